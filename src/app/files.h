@@ -1,0 +1,16 @@
+// The only place aerobox reads and writes files.
+#pragma once
+
+#include <string>
+
+namespace aerobox {
+
+// The whole file; throws InputError naming the file when it cannot be opened or read.
+std::string ReadTextFile(const std::string& path);
+
+// Writes `text` to a temporary file beside `path`, then renames it over `path`, so that `path`
+// is either complete or untouched. Throws InputError naming the file on any failure (and
+// removes the temporary file).
+void WriteFileAtomically(const std::string& path, const std::string& text);
+
+}  // namespace aerobox

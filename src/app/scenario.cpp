@@ -1,0 +1,174 @@
+#include "app/scenario.h"
+
+#include <toml++/toml.h>
+
+#include <filesystem>
+#include <sstream>
+
+#include "app/files.h"
+#include "common/error.h"
+#include "map/map_reader.h"
+#include "scene/scene_mjcf.h"
+#include "vehicle/quad_params.h"
+
+namespace aerobox {
+namespace fs = std::filesystem;
+namespace {
+
+int LineOf(const toml::node& node) { return static_cast<int>(node.source().begin.line); }
+
+Vec3 ReadPoint(const toml::node& node, const std::string& file, const char* key) {
+  const toml::array* array = node.as_array();
+  const SourceLocation where{file, LineOf(node)};
+  if (array == nullptr || array->size() != 3) {
+    throw InputError(where, key, "expected an array of 3 numbers [x, y, z] in metres");
+  }
+  Vec3 point;
+  for (int i = 0; i < 3; ++i) {
+    const std::optional<double> value = (*array)[static_cast<size_t>(i)].value<double>();
+    if (!value || !std::isfinite(*value)) {
+      throw InputError(where, std::string(key) + "[" + std::to_string(i) + "]",
+                       "expected a finite number");
+    }
+    point[i] = *value;
+  }
+  return point;
+}
+
+// The first candidate that is given; its origin goes to `origin`.
+std::optional<Vec3> FirstGiven(
+    std::initializer_list<std::pair<std::optional<Vec3>, const char*>> candidates,
+    std::string* origin) {
+  for (const auto& [point, name] : candidates) {
+    if (point) {
+      *origin = name;
+      return point;
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+Scenario ReadScenario(std::istream& in, const std::string& file) {
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  toml::table table;
+  try {
+    table = toml::parse(text, file);
+  } catch (const toml::parse_error& error) {
+    throw InputError({file, static_cast<int>(error.source().begin.line)}, "TOML",
+                     std::string(error.description()));
+  }
+
+  Scenario scenario;
+  scenario.file = file;
+  scenario.name = fs::absolute(fs::path(file)).parent_path().filename().string();
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    const SourceLocation where{file, LineOf(node)};
+    if (name == "name") {
+      const std::optional<std::string> value = node.value<std::string>();
+      if (!value || value->empty() || value->find_first_of("/\\") != std::string::npos) {
+        throw InputError(where, name, "expected a non-empty string without '/' (a folder name)");
+      }
+      scenario.name = *value;
+    } else if (name == "map") {
+      const std::optional<std::string> value = node.value<std::string>();
+      if (!value || value->empty()) throw InputError(where, name, "expected a file name");
+      scenario.map_path = (fs::path(file).parent_path() / *value).lexically_normal().string();
+    } else if (name == "start") {
+      scenario.start = ReadPoint(node, file, "start");
+    } else if (name == "goal") {
+      scenario.goal = ReadPoint(node, file, "goal");
+    } else if (name == "seed") {
+      const std::optional<int64_t> value = node.value<int64_t>();
+      if (!value || *value < 0) throw InputError(where, name, "expected a non-negative integer");
+      scenario.seed = static_cast<std::uint64_t>(*value);
+    } else if (name == "planner" || name == "trajectory" || name == "controller" ||
+               name == "render") {
+      const toml::table* section = node.as_table();
+      if (section == nullptr) throw InputError(where, name, "expected a table [" + name + "]");
+      for (const auto& [inner, inner_node] : *section) {
+        throw InputError({file, LineOf(inner_node)}, name + "." + std::string(inner.str()),
+                         "unknown key (this version defines no keys in [" + name + "])");
+      }
+    } else {
+      throw InputError(where, name,
+                       "unknown key (expected name, map, start, goal, seed, [planner], "
+                       "[trajectory], [controller] or [render])");
+    }
+  }
+  if (scenario.map_path.empty()) throw InputError({file, 0}, "map", "missing key 'map'");
+  return scenario;
+}
+
+FlightSetup LoadFlightSetup(const std::string& path, const SetupOverrides& overrides) {
+  FlightSetup setup;
+  std::string map_path = path;
+  std::optional<Scenario> scenario;
+  if (fs::path(path).extension() == ".toml") {
+    std::istringstream text(ReadTextFile(path));
+    scenario = ReadScenario(text, path);
+    map_path = scenario->map_path;
+  }
+
+  const std::string map_text = ReadTextFile(map_path);
+  std::istringstream map_stream(map_text);
+  setup.map_format = DetectMapFormat(map_path, map_text.substr(0, 64));
+  setup.map = ReadMap(map_stream, map_path, setup.map_format);
+  // a scenario names its map: scenes keep their map in a file called map.json
+  if (scenario) setup.map.name = scenario->name;
+  setup.name = setup.map.name;
+  setup.seed = overrides.seed.value_or(scenario ? scenario->seed : 1);
+
+  std::optional<StartGoal> side_file;
+  const fs::path side_path =
+      fs::path(map_path).parent_path() / (fs::path(map_path).stem().string() + ".startgoal.txt");
+  std::error_code ec;
+  if (fs::is_regular_file(side_path, ec)) {
+    std::istringstream text(ReadTextFile(side_path.string()));
+    side_file = ReadStartGoal(text, side_path.string());
+  }
+
+  const auto from_side_file = [&](bool start) -> std::optional<Vec3> {
+    if (!side_file) return std::nullopt;
+    return start ? side_file->start : side_file->goal;
+  };
+  const std::optional<Vec3> start =
+      FirstGiven({{overrides.start, "command line"},
+                  {scenario ? scenario->start : std::nullopt, "scenario"},
+                  {setup.map.start, "map file"},
+                  {from_side_file(true), "start/goal file"}},
+                 &setup.start_origin);
+  setup.goal = FirstGiven({{overrides.goal, "command line"},
+                           {scenario ? scenario->goal : std::nullopt, "scenario"},
+                           {setup.map.goal, "map file"},
+                           {from_side_file(false), "start/goal file"}},
+                          &setup.goal_origin);
+  if (start) {
+    setup.start = *start;
+  } else {
+    const QuadParams vehicle;
+    // 0.3 m keeps the default start clear of walls by more than the vehicle's own size
+    const std::optional<Vec3> fallback =
+        DefaultStart(setup.map, 0.3, 0.5 * vehicle.collision_size.z());
+    if (!fallback) {
+      throw InputError({path, 0}, "start", "no start given and no free spot on the floor found");
+    }
+    setup.start = *fallback;
+    setup.start_origin = "default";
+  }
+  return setup;
+}
+
+std::string SceneMjcfFor(const FlightSetup& setup) {
+  const QuadParams vehicle;
+  SceneOptions options;
+  options.vehicle_position = VehicleRestPosition(setup.map, vehicle, setup.start);
+  options.heading_target = setup.goal;
+  return BuildSceneMjcf(setup.map, vehicle, options);
+}
+
+}  // namespace aerobox

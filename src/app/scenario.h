@@ -1,0 +1,61 @@
+// Scenarios (scenes/<name>/scenario.toml) and the loading every command shares: a scenario or a
+// bare map file becomes a map with a start and a goal.
+#pragma once
+
+#include <cstdint>
+#include <istream>
+#include <optional>
+#include <string>
+
+#include "map/map.h"
+#include "map/map_reader.h"
+
+namespace aerobox {
+
+// scenario.toml:
+//   name = "window"                      # optional; default: the scenario file's folder name
+//   map = "map.json"                     # required; relative to the scenario file
+//   start = [0.7, -4.3, 0.7]             # optional when the map gives one [m]
+//   goal = [8.0, 18.0, 3.0]              # optional when the map gives one [m]
+//   seed = 1                             # optional; seeds every random generator
+//   [planner] [trajectory] [controller] [render]   # optional tables (no keys defined yet)
+struct Scenario {
+  std::string name;
+  std::string file;      // the scenario file, for messages
+  std::string map_path;  // resolved against the scenario file's folder
+  std::optional<Vec3> start;
+  std::optional<Vec3> goal;
+  std::uint64_t seed = 1;
+};
+
+// Parses scenario text; throws InputError naming the file, line and key at fault.
+Scenario ReadScenario(std::istream& in, const std::string& file);
+
+// A map ready to fly: where start and goal came from is kept for messages and summaries.
+struct FlightSetup {
+  std::string name;
+  Map map;
+  MapFormat map_format = MapFormat::kTxt;
+  Vec3 start = Vec3::Zero();
+  std::string start_origin;  // "command line", "scenario", "map file", "start/goal file", "default"
+  std::optional<Vec3> goal;
+  std::string goal_origin;
+  std::uint64_t seed = 1;
+};
+
+struct SetupOverrides {
+  std::optional<Vec3> start;
+  std::optional<Vec3> goal;
+  std::optional<std::uint64_t> seed;
+};
+
+// `path` is a scenario (.toml) or a map (.txt, .json, .csv). Start and goal come from, in order:
+// the overrides, the scenario, the map file, a "<map stem>.startgoal.txt" file beside a map
+// (RBE595's start and goal files). Without any start, the vehicle rests on the floor at the
+// map's DefaultStart(). Throws InputError for any bad file.
+FlightSetup LoadFlightSetup(const std::string& path, const SetupOverrides& overrides);
+
+// The MJCF scene of a set-up: the vehicle rests at the start, the chase camera faces the goal.
+std::string SceneMjcfFor(const FlightSetup& setup);
+
+}  // namespace aerobox

@@ -1,0 +1,81 @@
+#include "map/map.h"
+
+#include <cmath>
+#include <set>
+
+#include "common/error.h"
+#include "common/number_format.h"
+
+namespace aerobox {
+namespace {
+
+void CheckExtent(const Aabb& box, const SourceLocation& where, const std::string& field) {
+  static const char* const kAxes[] = {"x", "y", "z"};
+  if (!box.min.allFinite() || !box.max.allFinite()) {
+    throw InputError(where, field, "extents must be finite numbers");
+  }
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!(box.min[axis] < box.max[axis])) {
+      throw InputError(where, field,
+                       std::string(kAxes[axis]) + "min " + FormatNumber(box.min[axis]) +
+                           " must be less than " + kAxes[axis] + "max " +
+                           FormatNumber(box.max[axis]));
+    }
+  }
+}
+
+}  // namespace
+
+void ValidateMap(const Map& map) {
+  CheckExtent(map.bounds, {map.source, map.bounds_line}, "boundary");
+  std::set<std::string> names;
+  for (const Box& box : map.boxes) {
+    const SourceLocation where{map.source, box.line};
+    CheckExtent(box.extent, where, box.name);
+    if (!((box.rgb.array() >= 0.0).all() && (box.rgb.array() <= 1.0).all())) {
+      throw InputError(where, box.name, "colour components must lie in [0, 1]");
+    }
+    if (!names.insert(box.name).second) {
+      throw InputError(where, box.name, "box name is used twice");
+    }
+  }
+  for (const auto& [point, field] : {std::pair{map.start, "start"}, std::pair{map.goal, "goal"}}) {
+    if (point && !point->allFinite()) {
+      throw InputError({map.source, map.start_goal_line}, field, "must be three finite numbers");
+    }
+  }
+}
+
+std::vector<size_t> BoxesOutsideBounds(const Map& map) {
+  std::vector<size_t> outside;
+  for (size_t i = 0; i < map.boxes.size(); ++i) {
+    if (!map.boxes[i].extent.IsInside(map.bounds)) outside.push_back(i);
+  }
+  return outside;
+}
+
+std::optional<size_t> FirstOverlappingBox(const Map& map, const Aabb& query) {
+  for (size_t i = 0; i < map.boxes.size(); ++i) {
+    if (map.boxes[i].extent.Overlaps(query)) return i;
+  }
+  return std::nullopt;
+}
+
+std::optional<Vec3> DefaultStart(const Map& map, double clearance, double half_height) {
+  constexpr double kGridStep = 0.25;  // [m] fine enough for the narrowest published map gaps
+  const Vec3 size = map.bounds.Size();
+  const int nx = static_cast<int>(std::floor(size.x() / kGridStep));
+  const int ny = static_cast<int>(std::floor(size.y() / kGridStep));
+  for (int j = 1; j < ny; ++j) {
+    for (int i = 1; i < nx; ++i) {
+      const Vec3 p(map.bounds.min.x() + i * kGridStep, map.bounds.min.y() + j * kGridStep,
+                   map.bounds.min.z() + half_height);
+      const Aabb around{p.array() - clearance, p.array() + clearance};
+      const Aabb clipped_floor{around.min + Vec3(0, 0, clearance - half_height), around.max};
+      if (clipped_floor.IsInside(map.bounds) && !FirstOverlappingBox(map, around)) return p;
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace aerobox

@@ -1,0 +1,44 @@
+// Map + vehicle -> a self-contained MJCF scene (no includes, no files it depends on), so a
+// written scene.xml loads from wherever it is, in aerobox or in MuJoCo's own tools.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "map/map.h"
+#include "vehicle/quad_params.h"
+
+namespace aerobox {
+
+struct SceneOptions {
+  // Where the vehicle's centre starts [m, world]. Use VehicleRestPosition() to turn a map's or a
+  // scenario's start into this.
+  Vec3 vehicle_position = Vec3::Zero();
+  // Where the flight heads [m, world], when known: the chase camera sits behind the line from
+  // the start towards it. Without it, the chase camera looks along +x.
+  std::optional<Vec3> heading_target;
+  // Off-screen render buffer [pixels]; renders larger than this are impossible.
+  int offscreen_width = 1920;
+  int offscreen_height = 1080;
+  // Physics time step [s].
+  double timestep = 0.001;
+
+  // Throws std::invalid_argument for non-finite positions, non-positive sizes or time step.
+  void Validate() const;
+};
+
+// The vehicle's starting centre for a requested start point [m]: the point itself, raised so
+// that the collision box's bottom is not below the floor (the map's lower z bound). A start on
+// the floor, like RBE595 P2b's z = 0, puts the vehicle resting on the floor.
+Vec3 VehicleRestPosition(const Map& map, const QuadParams& params, const Vec3& start);
+
+// The scene: one named box geom per map box (its colour), a floor plane at the lower z bound,
+// the bounds drawn as thin edges that never collide, a sun light, an "overview" camera that
+// frames the whole map, a "chase" camera that follows the vehicle, and the vehicle with its
+// actuators and sensors. Deterministic: the same input gives the same text.
+std::string BuildSceneMjcf(const Map& map, const QuadParams& params, const SceneOptions& options);
+
+// The vehicle alone, resting on a floor in a 2 m test volume: the models/ file.
+std::string VehicleModelMjcf(const QuadParams& params);
+
+}  // namespace aerobox

@@ -1,0 +1,80 @@
+// Owns one MuJoCo model and its data: loads an aerobox scene, steps it with four rotor thrust
+// commands and reports the vehicle's state and contacts in our conventions.
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/state.h"
+#include "common/types.h"
+
+namespace aerobox {
+
+struct MjModelDeleter {
+  void operator()(mjModel* model) const { mj_deleteModel(model); }
+};
+struct MjDataDeleter {
+  void operator()(mjData* data) const { mj_deleteData(data); }
+};
+using MjModelPtr = std::unique_ptr<mjModel, MjModelDeleter>;
+using MjDataPtr = std::unique_ptr<mjData, MjDataDeleter>;
+
+// A contact between the vehicle and anything else (an obstacle, the floor).
+struct VehicleContact {
+  std::string other_geom;  // name of the geom the vehicle touches ("" when unnamed)
+  Vec3 position_W;         // contact point [m]
+  double distance = 0.0;   // signed distance [m]; negative is penetration
+};
+
+class Simulation {
+ public:
+  // Loads MJCF text; `source` names it in messages. Throws InputError with MuJoCo's message
+  // when it does not load, or when it lacks the vehicle's body, rotor actuators or joint.
+  static Simulation FromXml(const std::string& xml, const std::string& source);
+  // Loads an MJCF file (it may include meshes etc. relative to itself).
+  static Simulation FromFile(const std::string& path);
+
+  // Applies the four rotor thrust commands [N] (rotor order in vehicle/quad_params.h) and
+  // advances one time step. Commands outside [0, max] are clamped by the actuators' ctrlrange;
+  // the produced thrust follows the command with the motor lag.
+  void Step(const Vec4& thrust_commands);
+
+  // Thrust each rotor produces now [N]: the motor-lag state.
+  Vec4 RotorThrusts() const;
+  // Sets the produced thrusts and the commands (e.g. start in hover without spin-up).
+  void SetRotorThrusts(const Vec4& thrusts);
+
+  State VehicleState() const;
+  // Places the vehicle and recomputes derived quantities (mj_forward).
+  void SetVehicleState(const State& state);
+
+  // Accelerations from the last step or SetVehicleState: linear of the body origin in the
+  // world frame [m/s^2] and angular in the body frame [rad/s^2].
+  Vec3 LinearAcceleration_W() const;
+  Vec3 AngularAcceleration_B() const;
+
+  // Contacts the vehicle has in the current state.
+  std::vector<VehicleContact> VehicleContacts() const;
+
+  double time() const { return data_->time; }
+  double timestep() const { return model_->opt.timestep; }
+  const mjModel* model() const { return model_.get(); }
+  const mjData* data() const { return data_.get(); }
+
+ private:
+  Simulation(MjModelPtr model, const std::string& source);
+
+  MjModelPtr model_;
+  MjDataPtr data_;
+  int body_id_ = -1;
+  int qpos_adr_ = -1;  // the free joint's position (3) and quaternion (4)
+  int qvel_adr_ = -1;  // its linear velocity in the world (3), angular in the body (3)
+  std::array<int, 4> actuator_ids_{};
+  std::array<int, 4> act_adr_{};  // each rotor's motor-lag state in mjData::act
+};
+
+}  // namespace aerobox

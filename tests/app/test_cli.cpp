@@ -1,0 +1,125 @@
+#include <doctest/doctest.h>
+
+#include <sstream>
+#include <vector>
+
+#include "app/cli.h"
+#include "app/exit_codes.h"
+#include "sim/simulation.h"
+#include "test_support.h"
+
+namespace aerobox {
+namespace {
+
+using testing::TempDir;
+
+struct Run {
+  int code = -1;
+  std::string out;
+  std::string err;
+};
+
+Run Aerobox(std::vector<std::string> args) {
+  args.insert(args.begin(), "aerobox");
+  std::vector<const char*> argv;
+  for (const std::string& arg : args) argv.push_back(arg.c_str());
+  std::ostringstream out;
+  std::ostringstream err;
+  Run run;
+  run.code = RunCli(static_cast<int>(argv.size()), argv.data(), out, err);
+  run.out = out.str();
+  run.err = err.str();
+  return run;
+}
+
+const char* const kRoom = "boundary 0 0 0 5 5 2\nblock 2 2 0 3 3 2 0 255 0\n";
+
+}  // namespace
+
+TEST_CASE("--help and --version exit 0 and usage errors exit 2") {
+  const Run help = Aerobox({"--help"});
+  CHECK(help.code == kExitReachedGoal);
+  CHECK(help.out.find("scene") != std::string::npos);
+  CHECK(help.out.find("check") != std::string::npos);
+  CHECK(Aerobox({"scene", "--help"}).out.find("--output") != std::string::npos);
+  const Run version = Aerobox({"--version"});
+  CHECK(version.code == kExitReachedGoal);
+  CHECK(version.out.find("aerobox " AEROBOX_VERSION " (MuJoCo 2.2.2)") != std::string::npos);
+  CHECK(Aerobox({}).code == kExitBadInput);
+  CHECK(Aerobox({"fyl"}).code == kExitBadInput);
+  CHECK(Aerobox({"check"}).code == kExitBadInput);
+}
+
+TEST_CASE("check prints a summary of a good map and exits 0") {
+  const TempDir dir;
+  const std::string map = dir.Write("room.txt", kRoom + std::string("block 4.5 0 0 5.5 1 1\n"));
+  const Run run = Aerobox({"check", map, "--start", "1,1,0", "--goal", "4,4,1"});
+  CHECK(run.code == kExitReachedGoal);
+  CAPTURE(run.out);
+  CAPTURE(run.err);
+  CHECK(run.out.find("boxes     2") != std::string::npos);
+  CHECK(run.out.find("start     1, 1, 0 (command line)") != std::string::npos);
+  CHECK(run.out.find("1 box reaches outside the bounds (kept)") != std::string::npos);
+  CHECK(run.out.find("block_1 (line 3)") != std::string::npos);
+  CHECK(run.out.find("loads in MuJoCo 2.2.2") != std::string::npos);
+  CHECK(run.out.find("result    ok") != std::string::npos);
+}
+
+TEST_CASE("bad maps and points exit 2 with file:line messages") {
+  const TempDir dir;
+  const std::string bad = dir.Write("bad.txt", "boundary 0 0 0 5 5 2\nblock 1 1 1 2 2\n");
+  Run run = Aerobox({"check", bad});
+  CHECK(run.code == kExitBadInput);
+  CHECK(run.err == "aerobox: error: " + bad +
+                       ":2: block: expected 6 numbers (xmin ymin zmin "
+                       "xmax ymax zmax) or 9 (with r g b), found 5\n");
+
+  const std::string room = dir.Write("room.txt", kRoom);
+  run = Aerobox({"check", room, "--start", "2.5,2.5,1"});
+  CHECK(run.code == kExitBadInput);
+  CHECK(run.err.find(room + ":2: start (command line): 2.5, 2.5, 1 lies inside block_0") !=
+        std::string::npos);
+  run = Aerobox({"check", room, "--goal", "9,1,1"});
+  CHECK(run.code == kExitBadInput);
+  CHECK(run.err.find("goal (command line): 9, 1, 1 lies outside the bounds") != std::string::npos);
+  run = Aerobox({"check", room, "--start", "1,1"});
+  CHECK(run.code == kExitBadInput);
+  CHECK(run.err.find("--start: expected three numbers X,Y,Z") != std::string::npos);
+  run = Aerobox({"scene", (dir.path() / "absent.json").string()});
+  CHECK(run.code == kExitBadInput);
+  CHECK(run.err.find("absent.json: cannot open") != std::string::npos);
+}
+
+TEST_CASE("scene writes a complete file or nothing") {
+  const TempDir dir;
+  const std::string room = dir.Write("room.txt", kRoom);
+  const std::string output = (dir.path() / "room.xml").string();
+  const Run run = Aerobox({"scene", room, "-o", output, "--start", "1,1,0"});
+  REQUIRE(run.code == kExitReachedGoal);
+  const std::string xml = testing::ReadFile(output);
+  CHECK(xml.find("<geom name=\"block_0\"") != std::string::npos);
+  CHECK_NOTHROW(Simulation::FromFile(output));
+  CHECK_FALSE(std::filesystem::exists(output + ".partial"));
+
+  // to standard output without -o
+  CHECK(Aerobox({"scene", room, "--start", "1,1,0"}).out == xml);
+
+  const std::string unwritable = (dir.path() / "no" / "such" / "folder" / "x.xml").string();
+  const Run failed = Aerobox({"scene", room, "-o", unwritable});
+  CHECK(failed.code == kExitBadInput);
+  CHECK(failed.err.find("x.xml: cannot write") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(dir.path() / "no"));
+
+  const std::string bad = dir.Write("bad.txt", "boundary 0 0 0 5 5\n");
+  const std::string not_written = (dir.path() / "bad.xml").string();
+  CHECK(Aerobox({"scene", bad, "-o", not_written}).code == kExitBadInput);
+  CHECK_FALSE(std::filesystem::exists(not_written));
+}
+
+TEST_CASE("model writes the vehicle's MJCF") {
+  const Run run = Aerobox({"model"});
+  CHECK(run.code == kExitReachedGoal);
+  CHECK(run.out.find("<body name=\"quad\"") != std::string::npos);
+}
+
+}  // namespace aerobox

@@ -1,0 +1,39 @@
+#include <doctest/doctest.h>
+
+#include "common/error.h"
+#include "map/map.h"
+
+namespace aerobox {
+
+TEST_CASE("DefaultStart finds a free spot on the floor clear of every box") {
+  Map map;
+  map.name = "grid";
+  map.bounds = {Vec3(0, 0, 0), Vec3(4.5, 6.5, 3)};
+  // a pillar at the corner where the scan begins
+  map.boxes.push_back({{Vec3(0, 0, 0), Vec3(0.5, 0.5, 3)}, Vec3(1, 0, 0), "block_0", 1});
+  const std::optional<Vec3> start = DefaultStart(map, 0.3, 0.025);
+  REQUIRE(start);
+  CHECK(start->z() == doctest::Approx(0.025));
+  const Aabb around{start->array() - 0.3, start->array() + 0.3};
+  CHECK_FALSE(FirstOverlappingBox(map, around));
+  CHECK(start->x() > 0.8 - 1e-9);  // the first grid point clear of the pillar by 0.3 m
+
+  map.boxes.push_back({map.bounds, Vec3(1, 0, 0), "block_1", 2});  // fills everything
+  CHECK_FALSE(DefaultStart(map, 0.3, 0.025));
+}
+
+TEST_CASE("ValidateMap rejects what no reader should produce") {
+  Map map;
+  map.source = "m.txt";
+  map.bounds = {Vec3(0, 0, 0), Vec3(1, 1, 1)};
+  map.boxes.push_back({{Vec3(0, 0, 0), Vec3(1, 1, 1)}, Vec3(1, 0, 0), "a", 3});
+  CHECK_NOTHROW(ValidateMap(map));
+  map.boxes.push_back({{Vec3(0, 0, 0), Vec3(1, 1, 1)}, Vec3(1, 0, 0), "a", 4});
+  CHECK_THROWS_WITH_AS(ValidateMap(map), "m.txt:4: a: box name is used twice", InputError);
+  map.boxes.back().name = "b";
+  map.boxes.back().rgb = Vec3(2, 0, 0);
+  CHECK_THROWS_WITH_AS(ValidateMap(map), "m.txt:4: b: colour components must lie in [0, 1]",
+                       InputError);
+}
+
+}  // namespace aerobox

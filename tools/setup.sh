@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Installs the Debian packages aerobox needs to build and test, and nothing when they are all
+# there already. Runs apt-get as root, or through sudo otherwise.
+set -euo pipefail
+
+packages=(
+  # toolchain
+  build-essential cmake pkg-config git clang-format
+  # src/common: vector math
+  libeigen3-dev
+  # src/sim (and every scene test): MuJoCo 2.2.2; its CMake config needs qhull's headers and
+  # OpenGL (find_dependency), and mujoco-compile checks our scenes outside our code
+  libmujoco-dev libqhull-dev libgl-dev libmujoco-samples
+  # src/app: command line and scenario files
+  libcli11-dev libtomlplusplus-dev
+  # tests/
+  doctest-dev
+)
+
+missing=()
+for package in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${db:Status-Status}' "$package" 2>/dev/null || true)
+  [ "$status" = "installed" ] || missing+=("$package")
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} packages are installed"
+  exit 0
+fi
+
+sudo=()
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo > /dev/null || { echo "setup: not root and no sudo; install: ${missing[*]}" >&2; exit 1; }
+  sudo=(sudo)
+fi
+echo "setup: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+"${sudo[@]}" apt-get update -q
+"${sudo[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
