@@ -82,7 +82,7 @@ void WriteHead(const Map& map, const SceneOptions& options, XmlWriter* xml) {
 
 void WriteBoundsEdges(const Map& map, XmlWriter* xml) {
   const Vec3 size = map.bounds.Size();
-  const double thickness = std::max(0.004, 0.001 * size.maxCoeff());  // half-thickness [m]
+  const double thickness = std::max(0.003, 0.0004 * size.maxCoeff());  // half-thickness [m]
   int index = 0;
   // 12 edges: for each axis, the 4 edges parallel to it
   for (int axis = 0; axis < 3; ++axis) {
