@@ -11,6 +11,8 @@ packages=(
   # src/sim (and every scene test): MuJoCo 2.2.2; its CMake config needs qhull's headers and
   # OpenGL (find_dependency), and mujoco-compile checks our scenes outside our code
   libmujoco-dev libqhull-dev libgl-dev libmujoco-samples
+  # src/geometry: FCL's dynamic AABB tree (broad phase); src/planning: nanoflann's k-d tree
+  libfcl-dev libnanoflann-dev
   # src/app: command line and scenario files
   libcli11-dev libtomlplusplus-dev
   # tests/

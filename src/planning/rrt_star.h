@@ -1,0 +1,72 @@
+// RRT* (Karaman and Frazzoli 2011, "Sampling-based algorithms for optimal motion planning") with
+// informed sampling once a solution exists (Gammell et al. 2014), then shortcutting and pruning
+// of the returned path. Deterministic for a given seed and iteration count.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "common/types.h"
+#include "planning/validity.h"
+
+namespace aerobox {
+
+struct RrtStarParams {
+  // Longest edge the tree grows in one step [m]; 0 picks 0.2 x the diagonal of the sampling
+  // bounds (OMPL's default "range").
+  double max_step = 0.0;
+  // Probability of steering towards the goal instead of a random sample, in [0, 1).
+  double goal_bias = 0.05;
+  // Scales the rewiring neighbourhood: k = rewire_factor * e * (1 + 1/3) * log(n + 1) nearest
+  // nodes (the k-nearest form of RRT*; > 1 keeps asymptotic optimality). Must be > 0.
+  double rewire_factor = 1.1;
+  // Stop after this much wall time [s] (> 0) ...
+  double time_budget = 1.0;
+  // ... or after this many iterations (0: no limit). With a limit and an ample time budget the
+  // result depends only on the seed.
+  long max_iterations = 0;
+  // Stop as soon as a first solution exists (then skip the anytime improvement).
+  bool stop_at_first_solution = false;
+  // Sample only where the path can still improve, once there is one.
+  bool informed = true;
+  // Random shortcut attempts on the returned path (0: return the tree's path as it is).
+  int shortcut_attempts = 100;
+  // Seeds the planner's own mt19937_64.
+  std::uint64_t seed = 1;
+
+  // Throws std::invalid_argument naming the field and value.
+  void Validate() const;
+};
+
+enum class PlanStatus {
+  kSolved,
+  kNoPathWithinBudget,  // no path found before the time or iteration budget ran out
+  kStartInvalid,
+  kGoalInvalid,
+};
+const char* ToString(PlanStatus status);
+
+struct PlanStats {
+  long iterations = 0;
+  size_t nodes = 0;                      // in the tree at the end
+  double time_to_first_solution = -1.0;  // [s]; -1 when none was found
+  double first_cost = -1.0;              // [m] length of the first solution
+  double tree_cost = -1.0;               // [m] the tree's best path at the end
+  double final_cost = -1.0;              // [m] after shortcutting and pruning
+  double planning_time = 0.0;            // [s] including simplification
+  // (time [s], tree path length [m]) each time the best path improved: the anytime curve
+  std::vector<std::pair<double, double>> cost_history;
+};
+
+struct PlanResult {
+  PlanStatus status = PlanStatus::kNoPathWithinBudget;
+  std::vector<Vec3> path;  // start, waypoints..., goal when solved; empty otherwise
+  PlanStats stats;
+};
+
+// Plans from start to goal, sampling inside `bounds` [m]. Never throws for a problem that has no
+// solution; throws std::invalid_argument for invalid parameters.
+PlanResult PlanRrtStar(const Vec3& start, const Vec3& goal, const Aabb& bounds,
+                       const Validity& validity, const RrtStarParams& params);
+
+}  // namespace aerobox
