@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages aerobox needs to build and test, and nothing when they are all
 # there already. Runs apt-get as root, or through sudo otherwise.
+# Usage: tools/setup.sh [--bench]   (--bench adds OMPL, the reference of `aerobox bench`)
 set -euo pipefail
 
 packages=(
@@ -18,6 +19,10 @@ packages=(
   # tests/
   doctest-dev
 )
+if [ "${1:-}" = "--bench" ]; then
+  # OMPL 1.5.2 as the planners' reference; its CMake config links these Boost libraries
+  packages+=(libompl-dev libboost-serialization-dev libboost-filesystem-dev libboost-system-dev)
+fi
 
 missing=()
 for package in "${packages[@]}"; do

@@ -7,11 +7,14 @@
 
 #include "app/exit_codes.h"
 #include "app/files.h"
+#include "app/plan_job.h"
+#include "app/planner_comparison.h"
 #include "app/scenario.h"
 #include "common/error.h"
 #include "common/number_format.h"
 #include "scene/scene_mjcf.h"
 #include "sim/simulation.h"
+#include "telemetry/csv_table.h"
 
 namespace aerobox {
 namespace {
@@ -117,6 +120,74 @@ int RunScene(const FlightSetup& setup, const std::string& output, std::ostream& 
   return kExitReachedGoal;
 }
 
+// The output folder: --out, or renders/<scenario name>/; created, and proven writable before
+// any work starts.
+std::string PrepareOutputFolder(const std::string& requested, const std::string& name) {
+  namespace fs = std::filesystem;
+  const fs::path folder = requested.empty() ? fs::path("renders") / name : fs::path(requested);
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (ec || !fs::is_directory(folder)) {
+    throw InputError({folder.string(), 0}, "--out",
+                     "cannot create the output folder: " + ec.message());
+  }
+  const fs::path probe = folder / ".aerobox-write-test";
+  WriteFileAtomically(probe.string(), "");
+  fs::remove(probe, ec);
+  return folder.string();
+}
+
+int RunPlan(const FlightSetup& setup, const std::string& out_dir, std::ostream& out) {
+  const std::string folder = PrepareOutputFolder(out_dir, setup.name);
+  const PlanOutcome plan = PlanFlight(setup);
+  for (const Endpoint* e : {&plan.start, &plan.goal}) {
+    if (e->moved > 0) {
+      out << (e == &plan.start ? "start" : "goal") << " moved " << std::fixed
+          << std::setprecision(3) << e->moved << std::defaultfloat << " m " << e->why << ": "
+          << FormatVector(e->requested, ", ") << " -> " << FormatVector(e->used, ", ") << "\n";
+    }
+  }
+  const PlanStats& stats = plan.result.stats;
+  std::ostringstream timing;
+  timing << std::fixed << std::setprecision(3) << stats.planning_time;
+  if (plan.result.status != PlanStatus::kSolved) {
+    out << "plan " << setup.name << ": " << ToString(plan.result.status) << " after "
+        << stats.iterations << " iterations (" << timing.str() << " s), seed " << setup.seed
+        << "\n";
+    return plan.result.status == PlanStatus::kNoPathWithinBudget ? kExitNoPath : kExitBadInput;
+  }
+  const std::string path_file = (std::filesystem::path(folder) / "path.csv").string();
+  WriteFileAtomically(path_file, PathCsv(plan.result.path));
+  std::ostringstream line;
+  line << std::fixed << std::setprecision(2) << "plan " << setup.name << ": solved, "
+       << plan.result.path.size() << " waypoints, " << stats.final_cost << " m (first solution "
+       << stats.first_cost << " m after " << std::setprecision(1)
+       << 1e3 * stats.time_to_first_solution << " ms), " << stats.iterations << " iterations in "
+       << timing.str() << " s, seed " << setup.seed << " -> " << path_file << "\n";
+  out << line.str();
+  return kExitReachedGoal;
+}
+
+int RunBench(const std::string& scenes, const std::string& maps, int seeds, double seconds,
+             std::ostream& out, std::ostream& err) {
+  std::vector<PlanningProblem> problems;
+  std::istringstream names(maps);
+  std::string name;
+  while (std::getline(names, name, ',')) {
+    const std::string scenario = (std::filesystem::path(scenes) / name / "scenario.toml").string();
+    const FlightSetup setup = LoadFlightSetup(scenario, {});
+    if (!setup.goal) throw InputError({scenario, 0}, "goal", "the benchmark needs a goal");
+    const CollisionWorld world(setup.map, CollisionParams());
+    problems.push_back({name, setup.map,
+                        ResolveEndpoint(setup.map, world, setup.start, "start").used,
+                        ResolveEndpoint(setup.map, world, *setup.goal, "goal").used});
+  }
+  out << "## RRT*: aerobox against OMPL " << (HaveOmpl() ? "1.5.2" : "(not built)") << ", " << seeds
+      << " seeds, " << seconds << " s each\n\n";
+  ComparePlanners(problems, seeds, seconds, out, err);
+  return kExitReachedGoal;
+}
+
 int RunModel(const std::string& output, std::ostream& out) {
   const std::string xml = VehicleModelMjcf(QuadParams());
   if (output.empty() || output == "-") {
@@ -151,6 +222,31 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   add_input(scene);
   scene->add_option("-o,--output", output, "output file (default: standard output)");
 
+  std::string out_dir;
+  std::uint64_t seed = 0;
+  bool seed_given = false;
+  CLI::App* plan = app.add_subcommand(
+      "plan", "plan a collision-free path with RRT* and write path.csv (no flight)");
+  add_input(plan);
+  plan->add_option("--out", out_dir, "output folder (default: renders/<scenario name>/)");
+  plan->add_option("--seed", seed, "random seed (default: the scenario's, else 1)")
+      ->each([&seed_given](const std::string&) { seed_given = true; });
+
+  std::string bench_scenes = "scenes";
+  std::string bench_maps = "window,maze,forest,over_under";
+  int bench_seeds = 20;
+  double bench_seconds = 1.0;
+  CLI::App* bench = app.add_subcommand(
+      "bench", "performance tables: RRT* against OMPL's (when built with AEROBOX_WITH_OMPL)");
+  bench->add_option("--scenes", bench_scenes, "folder with the scenes")->capture_default_str();
+  bench->add_option("--maps", bench_maps, "comma-separated scene names")->capture_default_str();
+  bench->add_option("--seeds", bench_seeds, "runs per planner and map")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
+  bench->add_option("--seconds", bench_seconds, "time budget of each run [s]")
+      ->capture_default_str()
+      ->check(CLI::Range(0.2, 60.0));
+
   CLI::App* check = app.add_subcommand(
       "check", "validate a map or scenario and print a summary (exit 2 when it is bad)");
   add_input(check);
@@ -167,11 +263,16 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
 
   try {
     if (model->parsed()) return RunModel(output, out);
+    if (bench->parsed()) {
+      return RunBench(bench_scenes, bench_maps, bench_seeds, bench_seconds, out, err);
+    }
     SetupOverrides overrides;
     overrides.start = ParsePointOption(start_text, "--start");
     overrides.goal = ParsePointOption(goal_text, "--goal");
+    if (seed_given) overrides.seed = seed;
     const FlightSetup setup = LoadFlightSetup(input, overrides);
     if (scene->parsed()) return RunScene(setup, output, out);
+    if (plan->parsed()) return RunPlan(setup, out_dir, out);
     return RunCheck(setup, out);
   } catch (const InputError& error) {
     err << "aerobox: error: " << error.what() << "\n";

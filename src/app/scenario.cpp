@@ -7,6 +7,7 @@
 
 #include "app/files.h"
 #include "common/error.h"
+#include "common/number_format.h"
 #include "map/map_reader.h"
 #include "scene/scene_mjcf.h"
 #include "vehicle/quad_params.h"
@@ -33,6 +34,48 @@ Vec3 ReadPoint(const toml::node& node, const std::string& file, const char* key)
     point[i] = *value;
   }
   return point;
+}
+
+// A number of the [planner] table within [low, high]; InputError at its line otherwise.
+double Number(const toml::node& node, const std::string& file, const std::string& key, double low,
+              double high) {
+  const std::optional<double> value = node.is_number() ? node.value<double>() : std::nullopt;
+  if (!value || !(*value >= low && *value <= high)) {
+    throw InputError({file, LineOf(node)}, key,
+                     "expected a number from " + FormatNumber(low) + " to " + FormatNumber(high));
+  }
+  return *value;
+}
+
+void ReadPlanner(const toml::table& table, const std::string& file, PlanningSettings* settings) {
+  RrtStarParams& rrt = settings->rrt;
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    const std::string field = "planner." + name;
+    if (name == "clearance") {
+      settings->collision.clearance = Number(node, file, field, 0.0, 10.0);
+    } else if (name == "max_iterations") {
+      rrt.max_iterations = static_cast<long>(Number(node, file, field, 0, 1e8));
+    } else if (name == "time_budget") {
+      rrt.time_budget = Number(node, file, field, 1e-3, 3600);
+    } else if (name == "max_step") {
+      rrt.max_step = Number(node, file, field, 0, 1e4);
+    } else if (name == "goal_bias") {
+      rrt.goal_bias = Number(node, file, field, 0, 0.99);
+    } else if (name == "rewire_factor") {
+      rrt.rewire_factor = Number(node, file, field, 0.01, 100);
+    } else if (name == "shortcut_attempts") {
+      rrt.shortcut_attempts = static_cast<int>(Number(node, file, field, 0, 1e6));
+    } else if (name == "informed") {
+      if (!node.is_boolean())
+        throw InputError({file, LineOf(node)}, field, "expected true or false");
+      rrt.informed = node.as_boolean()->get();
+    } else {
+      throw InputError({file, LineOf(node)}, field,
+                       "unknown key (expected clearance, max_iterations, time_budget, max_step, "
+                       "goal_bias, rewire_factor, informed or shortcut_attempts)");
+    }
+  }
 }
 
 // The first candidate that is given; its origin goes to `origin`.
@@ -86,8 +129,11 @@ Scenario ReadScenario(std::istream& in, const std::string& file) {
       const std::optional<int64_t> value = node.value<int64_t>();
       if (!value || *value < 0) throw InputError(where, name, "expected a non-negative integer");
       scenario.seed = static_cast<std::uint64_t>(*value);
-    } else if (name == "planner" || name == "trajectory" || name == "controller" ||
-               name == "render") {
+    } else if (name == "planner") {
+      const toml::table* section = node.as_table();
+      if (section == nullptr) throw InputError(where, name, "expected a table [planner]");
+      ReadPlanner(*section, file, &scenario.planning);
+    } else if (name == "trajectory" || name == "controller" || name == "render") {
       const toml::table* section = node.as_table();
       if (section == nullptr) throw InputError(where, name, "expected a table [" + name + "]");
       for (const auto& [inner, inner_node] : *section) {
@@ -122,6 +168,7 @@ FlightSetup LoadFlightSetup(const std::string& path, const SetupOverrides& overr
   if (scenario) setup.map.name = scenario->name;
   setup.name = setup.map.name;
   setup.seed = overrides.seed.value_or(scenario ? scenario->seed : 1);
+  if (scenario) setup.planning = scenario->planning;
 
   std::optional<StartGoal> side_file;
   const fs::path side_path =

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "app/planning_settings.h"
 #include "map/map.h"
 #include "map/map_reader.h"
 
@@ -18,7 +19,10 @@ namespace aerobox {
 //   start = [0.7, -4.3, 0.7]             # optional when the map gives one [m]
 //   goal = [8.0, 18.0, 3.0]              # optional when the map gives one [m]
 //   seed = 1                             # optional; seeds every random generator
-//   [planner] [trajectory] [controller] [render]   # optional tables (no keys defined yet)
+//   [planner]                            # optional: clearance, max_iterations, time_budget,
+//                                        #   max_step, goal_bias, rewire_factor, informed,
+//                                        #   shortcut_attempts (see planning_settings.h)
+//   [trajectory] [controller] [render]   # optional tables (no keys defined yet)
 struct Scenario {
   std::string name;
   std::string file;      // the scenario file, for messages
@@ -26,6 +30,7 @@ struct Scenario {
   std::optional<Vec3> start;
   std::optional<Vec3> goal;
   std::uint64_t seed = 1;
+  PlanningSettings planning;
 };
 
 // Parses scenario text; throws InputError naming the file, line and key at fault.
@@ -41,6 +46,7 @@ struct FlightSetup {
   std::optional<Vec3> goal;
   std::string goal_origin;
   std::uint64_t seed = 1;
+  PlanningSettings planning;
 };
 
 struct SetupOverrides {

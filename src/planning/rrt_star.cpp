@@ -1,12 +1,5 @@
 #include "planning/rrt_star.h"
 
-// nanoflann 1.4.3's dynamic index copies a bounding box before it is filled; GCC 12 warns at
-// every instantiation (the value is overwritten before use)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#include <nanoflann.hpp>
-#pragma GCC diagnostic pop
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -15,6 +8,7 @@
 
 #include "common/number_format.h"
 #include "planning/informed_sampler.h"
+#include "planning/nearest_neighbours.h"
 #include "planning/path_simplify.h"
 
 namespace aerobox {
@@ -72,20 +66,6 @@ struct Tree {
   }
 };
 
-// nanoflann's view of the tree's points.
-struct Cloud {
-  const std::vector<Vec3>* points;
-  size_t kdtree_get_point_count() const { return points->size(); }
-  double kdtree_get_pt(size_t i, size_t dim) const { return (*points)[i][static_cast<int>(dim)]; }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
-using KdTree =
-    nanoflann::KDTreeSingleIndexDynamicAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>, Cloud,
-                                               3, size_t>;
-
 // Whether a motion was checked: rewiring reuses what choosing the parent found.
 enum class Checked : signed char { kUnknown, kValid, kInvalid };
 
@@ -99,11 +79,11 @@ class Planner {
         params_(params),
         sampler_(start, goal, bounds),
         rng_(params.seed),
-        cloud_{&tree_.points},
-        index_(3, cloud_, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {
+        index_(&tree_.points) {
     step_ = params.max_step > 0 ? params.max_step : 0.2 * bounds.Size().norm();
-    // Karaman and Frazzoli's k-nearest constant for d = 3, as OMPL computes it
-    k_rrt_ = params.rewire_factor * (std::exp(1.0) + std::exp(1.0) / 3.0);
+    // k-nearest RRT*: k(n) = k_rrt log(n) neighbours with k_rrt > 2^(d+1) e (1 + 1/d) keeps
+    // asymptotic optimality (Karaman and Frazzoli 2011; the bound OMPL 1.5 uses), d = 3
+    k_rrt_ = params.rewire_factor * std::pow(2.0, 3 + 1) * std::exp(1.0) * (1.0 + 1.0 / 3.0);
   }
 
   PlanResult Run() {
@@ -158,20 +138,16 @@ class Planner {
  private:
   int AddNode(const Vec3& p, int parent, double cost) {
     const int index = tree_.Add(p, parent, cost);
-    index_.addPoints(static_cast<size_t>(index), static_cast<size_t>(index));
+    index_.Added();
     return index;
   }
 
   // One RRT* extension towards `target`; returns whether the best path may have changed.
   bool Extend(const Vec3& target) {
     // steer from the nearest node
-    size_t nearest = 0;
-    double nearest_d2 = 0.0;
-    nanoflann::KNNResultSet<double, size_t> one(1);
-    one.init(&nearest, &nearest_d2);
-    index_.findNeighbors(one, target.data(), nanoflann::SearchParams());
-    const Vec3& from = tree_.points[nearest];
-    const double distance = std::sqrt(nearest_d2);
+    index_.KNearest(target, 1, &neighbour_ids_, &neighbour_d2_);
+    const Vec3& from = tree_.points[neighbour_ids_[0]];
+    const double distance = std::sqrt(neighbour_d2_[0]);
     if (distance < 1e-9) return false;
     const Vec3 x = distance > step_ ? Vec3(from + (target - from) * (step_ / distance)) : target;
     if (!validity_.state(x)) return false;
@@ -179,25 +155,24 @@ class Planner {
     // the k nearest nodes, cheapest-through first
     const size_t n = tree_.points.size();
     const size_t k = std::min(n, static_cast<size_t>(std::ceil(k_rrt_ * std::log(n + 1.0))));
-    neighbour_ids_.resize(k);
-    neighbour_d2_.resize(k);
-    nanoflann::KNNResultSet<double, size_t> near(k);
-    near.init(neighbour_ids_.data(), neighbour_d2_.data());
-    index_.findNeighbors(near, x.data(), nanoflann::SearchParams());
-    neighbour_ids_.resize(near.size());
+    index_.KNearest(x, k, &neighbour_ids_, &neighbour_d2_);
     candidates_.clear();
-    for (const size_t id : neighbour_ids_) {
-      const int node = static_cast<int>(id);
-      const double d = (tree_.points[node] - x).norm();
+    for (size_t i = 0; i < neighbour_ids_.size(); ++i) {
+      const int node = static_cast<int>(neighbour_ids_[i]);
+      const double d = std::sqrt(neighbour_d2_[i]);
       candidates_.push_back({tree_.cost[node] + d, node, d, Checked::kUnknown});
     }
-    std::sort(candidates_.begin(), candidates_.end(),
-              [](const Candidate& a, const Candidate& b) { return a.through < b.through; });
-
-    // choose the parent: the cheapest neighbour with a valid motion
+    // choose the parent: the cheapest neighbour with a valid motion; a heap yields them in
+    // order of cost without sorting all (the first one is usually valid)
+    const auto costlier = [](const Candidate& a, const Candidate& b) {
+      return a.through > b.through;
+    };
+    std::make_heap(candidates_.begin(), candidates_.end(), costlier);
     int parent = -1;
     double cost = kInf;
-    for (Candidate& c : candidates_) {
+    for (auto end = candidates_.end(); end != candidates_.begin(); --end) {
+      std::pop_heap(candidates_.begin(), end, costlier);
+      Candidate& c = *(end - 1);
       c.checked = validity_.motion(tree_.points[c.node], x) ? Checked::kValid : Checked::kInvalid;
       if (c.checked == Checked::kValid) {
         parent = c.node;
@@ -262,8 +237,7 @@ class Planner {
   InformedSampler sampler_;
   std::mt19937_64 rng_;
   Tree tree_;
-  Cloud cloud_;
-  KdTree index_;
+  NearestNeighbours index_;
   double step_ = 0.0;
   double k_rrt_ = 0.0;
   std::vector<int> goal_parents_;

@@ -17,8 +17,8 @@ struct RrtStarParams {
   double max_step = 0.0;
   // Probability of steering towards the goal instead of a random sample, in [0, 1).
   double goal_bias = 0.05;
-  // Scales the rewiring neighbourhood: k = rewire_factor * e * (1 + 1/3) * log(n + 1) nearest
-  // nodes (the k-nearest form of RRT*; > 1 keeps asymptotic optimality). Must be > 0.
+  // Scales the rewiring neighbourhood: k = rewire_factor * 2^4 * e * (1 + 1/3) * log(n + 1)
+  // nearest nodes (the k-nearest form of RRT*; >= 1 keeps asymptotic optimality). Must be > 0.
   double rewire_factor = 1.1;
   // Stop after this much wall time [s] (> 0) ...
   double time_budget = 1.0;

@@ -12,6 +12,7 @@ namespace aerobox {
 namespace {
 
 using testing::TempDir;
+namespace fs = std::filesystem;
 
 struct Run {
   int code = -1;
@@ -114,6 +115,39 @@ TEST_CASE("scene writes a complete file or nothing") {
   const std::string not_written = (dir.path() / "bad.xml").string();
   CHECK(Aerobox({"scene", bad, "-o", not_written}).code == kExitBadInput);
   CHECK_FALSE(std::filesystem::exists(not_written));
+}
+
+TEST_CASE("plan writes path.csv, exits 3 without a path and 2 for unusable endpoints") {
+  const TempDir dir;
+  const std::string room = dir.Write("room.txt", "boundary 0 0 0 6 6 2\nblock 2.5 0 0 3 4.5 2\n");
+  const std::string out = (dir.path() / "out").string();
+  const Run run = Aerobox({"plan", room, "--start", "1,1,0", "--goal", "5,1,1", "--out", out});
+  CAPTURE(run.err);
+  REQUIRE(run.code == kExitReachedGoal);
+  CHECK(run.out.find("start moved 0.125 m off the bounds/floor") != std::string::npos);
+  CHECK(run.out.find("plan room: solved") != std::string::npos);
+  const std::string path = testing::ReadFile(fs::path(out) / "path.csv");
+  CHECK(path.rfind("x,y,z\n1,1,0.125\n", 0) == 0);
+  CHECK(path.size() > 30);
+  // the same seed writes the same bytes; another seed (usually) other ones
+  Aerobox({"plan", room, "--start", "1,1,0", "--goal", "5,1,1", "--out", out});
+  CHECK(testing::ReadFile(fs::path(out) / "path.csv") == path);
+
+  const std::string closed = dir.Write("closed.json", R"({"bounds": {"extents": [0, 2, 0, 4, 0, 1]},
+        "blocks": [{"extents": [0, 2, 2.4, 2.6, 0, 1]}], "start": [1, 1, 0.5], "goal": [1, 3, 0.5]})");
+  const Run none = Aerobox({"plan", closed, "--out", (dir.path() / "closed").string()});
+  CHECK(none.code == kExitNoPath);
+  CHECK(none.out.find("no path within budget") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir.path() / "closed" / "path.csv"));
+
+  const Run inside = Aerobox({"plan", room, "--start", "2.7,1,1", "--goal", "5,1,1", "--out", out});
+  CHECK(inside.code == kExitBadInput);
+  CHECK(inside.err.find(":2: start: 2.7, 1, 1 lies inside block_0") != std::string::npos);
+
+  const std::string blocked = dir.Write("file-not-folder", "");
+  const Run unwritable = Aerobox({"plan", room, "--out", blocked + "/sub"});
+  CHECK(unwritable.code == kExitBadInput);
+  CHECK(unwritable.err.find("cannot create the output folder") != std::string::npos);
 }
 
 TEST_CASE("model writes the vehicle's MJCF") {

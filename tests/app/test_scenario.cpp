@@ -46,7 +46,31 @@ TEST_CASE("scenario files: keys, defaults and the map path relative to the file"
   CHECK(defaults.seed == 1);
 }
 
+TEST_CASE("scenario files: the [planner] table") {
+  std::istringstream in(
+      "map = \"m.txt\"\n[planner]\nclearance = 0.2\nmax_iterations = 500\ntime_budget = 2.5\n"
+      "max_step = 1.5\ngoal_bias = 0.1\nrewire_factor = 1.5\ninformed = false\n"
+      "shortcut_attempts = 7\n");
+  const Scenario scenario = ReadScenario(in, "s.toml");
+  CHECK(scenario.planning.collision.clearance == 0.2);
+  const RrtStarParams& rrt = scenario.planning.rrt;
+  CHECK(rrt.max_iterations == 500);
+  CHECK(rrt.time_budget == 2.5);
+  CHECK(rrt.max_step == 1.5);
+  CHECK(rrt.goal_bias == 0.1);
+  CHECK(rrt.rewire_factor == 1.5);
+  CHECK_FALSE(rrt.informed);
+  CHECK(rrt.shortcut_attempts == 7);
+  // defaults: an iteration budget, so that a seed gives the same path on any machine
+  std::istringstream plain("map = \"m.txt\"\n");
+  CHECK(ReadScenario(plain, "s.toml").planning.rrt.max_iterations > 0);
+}
+
 TEST_CASE("scenario files: errors name the file, the line and the key") {
+  CHECK(ScenarioError("map = \"m.txt\"\n[planner]\nclearance = -1\n") ==
+        "scenes/x/scenario.toml:3: planner.clearance: expected a number from 0 to 10");
+  CHECK(ScenarioError("map = \"m.txt\"\n[planner]\ninformed = 1\n") ==
+        "scenes/x/scenario.toml:3: planner.informed: expected true or false");
   CHECK(ScenarioError("name = \"a\"\n") == "scenes/x/scenario.toml: map: missing key 'map'");
   CHECK(ScenarioError("map = \"m.txt\"\n\nstart = [1, 2]\n") ==
         "scenes/x/scenario.toml:3: start: expected an array of 3 numbers [x, y, z] in metres");
@@ -58,6 +82,8 @@ TEST_CASE("scenario files: errors name the file, the line and the key") {
             .rfind("scenes/x/scenario.toml:2: strat: unknown key", 0) == 0);
   CHECK(ScenarioError("map = \"m.txt\"\n[planner]\nrange = 2\n")
             .rfind("scenes/x/scenario.toml:3: planner.range: unknown key", 0) == 0);
+  CHECK(ScenarioError("map = \"m.txt\"\n[controller]\ngain = 2\n")
+            .rfind("scenes/x/scenario.toml:3: controller.gain: unknown key", 0) == 0);
   CHECK(ScenarioError("map = \"m.txt\"\nseed = -1\n") ==
         "scenes/x/scenario.toml:2: seed: expected a non-negative integer");
   CHECK(ScenarioError("map = \"m.txt\"\nname = \"a/b\"\n")

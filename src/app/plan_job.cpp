@@ -1,0 +1,97 @@
+#include "app/plan_job.h"
+
+#include <algorithm>
+
+#include "common/error.h"
+#include "common/number_format.h"
+
+namespace aerobox {
+namespace {
+
+// Offsets of a 2 cm grid within 0.5 m, nearest first: the search order for a usable endpoint.
+const std::vector<Vec3>& SearchOffsets() {
+  static const std::vector<Vec3> offsets = [] {
+    constexpr double kStep = 0.02;
+    constexpr int kCells = 25;  // 0.5 m / 2 cm
+    std::vector<Vec3> all;
+    for (int i = -kCells; i <= kCells; ++i) {
+      for (int j = -kCells; j <= kCells; ++j) {
+        for (int k = -kCells; k <= kCells; ++k) {
+          const Vec3 offset = kStep * Vec3(i, j, k);
+          if (offset.norm() <= kCells * kStep + 1e-9) all.push_back(offset);
+        }
+      }
+    }
+    std::stable_sort(all.begin(), all.end(),
+                     [](const Vec3& a, const Vec3& b) { return a.norm() < b.norm(); });
+    return all;
+  }();
+  return offsets;
+}
+
+}  // namespace
+
+Endpoint ResolveEndpoint(const Map& map, const CollisionWorld& world, const Vec3& p,
+                         const std::string& what) {
+  const SourceLocation where{map.source, 0};
+  if (!map.bounds.Contains(p)) {
+    throw InputError(where, what, FormatVector(p, ", ") + " lies outside the map bounds");
+  }
+  // the vehicle itself (no clearance) must fit where it is asked to be, once off the walls
+  CollisionParams tight = world.params();
+  tight.clearance = 0.0;
+  const CollisionWorld touching(map, tight);
+  const Vec3 physical = touching.ProjectIntoFreeBounds(p).point;
+  if (const auto box = touching.OverlappingBox(physical)) {
+    const Box& b = map.boxes[*box];
+    throw InputError(
+        {map.source, b.line}, what,
+        FormatVector(p, ", ") + " lies inside " + b.name + " (the vehicle does not fit)");
+  }
+
+  Endpoint endpoint;
+  endpoint.requested = p;
+  const Projection inside = world.ProjectIntoFreeBounds(p);
+  endpoint.used = inside.point;
+  if (inside.moved > 0) endpoint.why = "off the bounds/floor";
+  if (!world.IsPointFree(endpoint.used)) {
+    bool found = false;
+    for (const Vec3& offset : SearchOffsets()) {
+      const Vec3 candidate = inside.point + offset;
+      if (world.IsPointFree(candidate) && touching.IsSegmentFree(physical, candidate)) {
+        endpoint.used = candidate;
+        endpoint.why = "out of the clearance of obstacles";
+        found = true;
+        break;
+      }
+    }
+    if (!found) {
+      throw InputError(where, what,
+                       FormatVector(p, ", ") + " is within the " +
+                           FormatNumber(world.params().clearance) +
+                           " m clearance of an obstacle and no point within 0.5 m keeps it and "
+                           "is reachable in a straight line; move it or lower the clearance");
+    }
+  }
+  endpoint.moved = (endpoint.used - p).norm();
+  return endpoint;
+}
+
+PlanOutcome PlanFlight(const FlightSetup& setup) {
+  const PlanningSettings& settings = setup.planning;
+  if (!setup.goal) throw InputError({setup.map.source, 0}, "goal", "no goal given");
+  const CollisionWorld world(setup.map, settings.collision);
+  PlanOutcome outcome;
+  outcome.start = ResolveEndpoint(setup.map, world, setup.start, "start");
+  outcome.goal = ResolveEndpoint(setup.map, world, *setup.goal, "goal");
+  RrtStarParams rrt = settings.rrt;
+  rrt.seed = setup.seed;
+  const Validity validity{
+      [&world](const Vec3& p) { return world.IsPointFree(p); },
+      [&world](const Vec3& a, const Vec3& b) { return world.IsSegmentFree(a, b); }};
+  outcome.result =
+      PlanRrtStar(outcome.start.used, outcome.goal.used, world.free_bounds(), validity, rrt);
+  return outcome;
+}
+
+}  // namespace aerobox

@@ -1,0 +1,39 @@
+// Planning a flight set-up: the collision world, start and goal made usable, RRT*.
+#pragma once
+
+#include <string>
+
+#include "app/scenario.h"
+#include "geometry/collision_world.h"
+
+namespace aerobox {
+
+// Where a requested start or goal ended up. Points on the bounds or on the floor, and points
+// within the clearance of an obstacle, are moved by the smallest amount that makes them usable.
+struct Endpoint {
+  Vec3 requested = Vec3::Zero();
+  Vec3 used = Vec3::Zero();
+  double moved = 0.0;  // [m]
+  std::string why;     // "" when not moved
+};
+
+// Makes `p` a valid planning endpoint: inside the map bounds (on them is fine) and not inside a
+// box; then moved into the free bounds (off the floor and walls by the vehicle's half-size
+// plus the clearance), and, when it is still within the clearance of a box, to the nearest
+// point within 0.5 m (2 cm grid) that keeps the clearance and that the vehicle reaches on a
+// straight line without touching anything. Throws InputError (naming `what` and the map) when
+// there is no such point.
+Endpoint ResolveEndpoint(const Map& map, const CollisionWorld& world, const Vec3& p,
+                         const std::string& what);
+
+struct PlanOutcome {
+  Endpoint start;
+  Endpoint goal;
+  PlanResult result;
+};
+
+// Plans the set-up's start to goal with its planning settings; its seed seeds the planner. Throws
+// InputError for unusable endpoints (or a missing goal); a missing path is result.status.
+PlanOutcome PlanFlight(const FlightSetup& setup);
+
+}  // namespace aerobox

@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Builds aerobox with the OMPL reference (in build-bench/, apart from the normal build) and runs
+# `aerobox bench`. Extra arguments go to `aerobox bench`, e.g. tools/bench.sh --seeds 5
+set -euo pipefail
+top=$(cd "$(dirname "$0")/.." && pwd)
+build=${AEROBOX_BENCH_DIR:-$top/build-bench}
+
+"$top/tools/setup.sh" --bench
+if [ ! -f "$build/CMakeCache.txt" ]; then
+  cmake -S "$top" -B "$build" -DCMAKE_BUILD_TYPE=Release -DAEROBOX_WITH_OMPL=ON \
+        -DAEROBOX_BUILD_TESTS=OFF
+fi
+cmake --build "$build" --parallel "$(nproc)" --target aerobox
+cd "$top"
+exec "$build/aerobox" bench "$@"
