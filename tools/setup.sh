@@ -14,6 +14,8 @@ packages=(
   libmujoco-dev libqhull-dev libgl-dev libmujoco-samples
   # src/geometry: FCL's dynamic AABB tree (broad phase); src/planning: nanoflann's k-d tree
   libfcl-dev libnanoflann-dev
+  # src/trajectory: Ipopt (with MUMPS) for the corridor-constrained minimum-snap QP
+  coinor-libipopt-dev
   # src/app: command line and scenario files
   libcli11-dev libtomlplusplus-dev
   # tests/

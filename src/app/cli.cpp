@@ -165,6 +165,22 @@ int RunPlan(const FlightSetup& setup, const std::string& out_dir, std::ostream& 
        << 1e3 * stats.time_to_first_solution << " ms), " << stats.iterations << " iterations in "
        << timing.str() << " s, seed " << setup.seed << " -> " << path_file << "\n";
   out << line.str();
+
+  const TrajectoryResult& trajectory = *plan.trajectory;
+  const TrajectoryStats& t = trajectory.stats;
+  std::ostringstream summary;
+  summary << std::fixed << std::setprecision(2) << "trajectory: " << ToString(trajectory.status)
+          << " (" << t.solver_message << "), " << t.segments << " segments, " << t.refinements
+          << " refinements, " << 1e3 * t.solve_time << " ms";
+  if (trajectory.status != TrajectoryStatus::kSolved) {
+    out << summary.str() << "\n";
+    return kExitNoTrajectory;
+  }
+  const std::string trajectory_file = (std::filesystem::path(folder) / "trajectory.csv").string();
+  WriteFileAtomically(trajectory_file, TrajectoryCsv(trajectory.trajectory));
+  summary << "; " << t.duration << " s, max " << t.max_speed << " m/s, " << t.max_accel
+          << " m/s^2 -> " << trajectory_file << "\n";
+  out << summary.str();
   return kExitReachedGoal;
 }
 
@@ -226,7 +242,7 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   std::uint64_t seed = 0;
   bool seed_given = false;
   CLI::App* plan = app.add_subcommand(
-      "plan", "plan a collision-free path with RRT* and write path.csv (no flight)");
+      "plan", "plan a path (RRT*) and a trajectory (min-snap); write path.csv, trajectory.csv");
   add_input(plan);
   plan->add_option("--out", out_dir, "output folder (default: renders/<scenario name>/)");
   plan->add_option("--seed", seed, "random seed (default: the scenario's, else 1)")

@@ -1,9 +1,11 @@
 #include "app/plan_job.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "common/error.h"
 #include "common/number_format.h"
+#include "telemetry/csv_table.h"
 
 namespace aerobox {
 namespace {
@@ -91,7 +93,32 @@ PlanOutcome PlanFlight(const FlightSetup& setup) {
       [&world](const Vec3& a, const Vec3& b) { return world.IsSegmentFree(a, b); }};
   outcome.result =
       PlanRrtStar(outcome.start.used, outcome.goal.used, world.free_bounds(), validity, rrt);
+  if (outcome.result.status != PlanStatus::kSolved) return outcome;
+
+  CollisionParams looser = settings.collision;
+  looser.clearance = settings.trajectory_clearance;
+  const CollisionWorld trajectory_world(setup.map, looser);
+  const TrajectoryWorld view{
+      [&trajectory_world](const Aabb& box) { return trajectory_world.IsBoxFree(box); },
+      [&trajectory_world](const Vec3& a, const Vec3& b) {
+        return trajectory_world.IsSegmentFree(a, b);
+      }};
+  outcome.trajectory = GenerateTrajectory(outcome.result.path, view, settings.trajectory);
   return outcome;
+}
+
+std::string TrajectoryCsv(const PiecewiseTrajectory& trajectory, double rate) {
+  CsvTable table({"t", "x", "y", "z", "vx", "vy", "vz", "ax", "ay", "az"});
+  const double duration = trajectory.duration();
+  const long samples = static_cast<long>(std::floor(duration * rate + 1e-9));
+  Eigen::Matrix<double, 10, 1> row;
+  for (long i = 0; i <= samples; ++i) {
+    const double t = static_cast<double>(i) / rate;
+    row << t, trajectory.Evaluate(t, kPosition), trajectory.Evaluate(t, kVelocity),
+        trajectory.Evaluate(t, kAcceleration);
+    table.AddRow(row);
+  }
+  return table.Text();
 }
 
 }  // namespace aerobox

@@ -5,6 +5,7 @@
 
 #include "app/scenario.h"
 #include "geometry/collision_world.h"
+#include "trajectory/trajectory_generator.h"
 
 namespace aerobox {
 
@@ -30,10 +31,17 @@ struct PlanOutcome {
   Endpoint start;
   Endpoint goal;
   PlanResult result;
+  // the minimum-snap trajectory along the path, when there is a path
+  std::optional<TrajectoryResult> trajectory;
 };
 
-// Plans the set-up's start to goal with its planning settings; its seed seeds the planner. Throws
-// InputError for unusable endpoints (or a missing goal); a missing path is result.status.
+// Plans the set-up's start to goal with its planning settings (its seed seeds the planner), then
+// turns the path into a trajectory that keeps the trajectory clearance. Throws InputError for
+// unusable endpoints (or a missing goal); a missing path or trajectory is a status.
 PlanOutcome PlanFlight(const FlightSetup& setup);
+
+// trajectory.csv: t,x,y,z,vx,vy,vz,ax,ay,az every 1/rate seconds from 0 to the end [s, m, m/s,
+// m/s^2].
+std::string TrajectoryCsv(const PiecewiseTrajectory& trajectory, double rate = 100.0);
 
 }  // namespace aerobox

@@ -1,8 +1,10 @@
-// What a scenario's [planner] table sets: the collision margin and RRT*'s parameters.
+// What a scenario's [planner] and [trajectory] tables set: clearances, RRT*'s parameters and
+// the trajectory generator's.
 #pragma once
 
 #include "geometry/collision_world.h"
 #include "planning/rrt_star.h"
+#include "trajectory/trajectory_generator.h"
 
 namespace aerobox {
 
@@ -10,13 +12,17 @@ namespace aerobox {
 // count, so that the same seed gives the same path on any machine; the time budget is only a
 // safety cap.
 struct PlanningSettings {
-  CollisionParams collision;
+  CollisionParams collision;  // what the planner keeps from obstacles
   RrtStarParams rrt = [] {
     RrtStarParams p;
     p.max_iterations = 4000;
     p.time_budget = 10.0;
     return p;
   }();
+  TrajectoryParams trajectory;
+  // What the trajectory keeps from obstacles [m]: half the planner's, so that the corridors
+  // around the planner's path have room to bend in.
+  double trajectory_clearance = 0.05;
 };
 
 }  // namespace aerobox

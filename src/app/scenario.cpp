@@ -47,6 +47,11 @@ double Number(const toml::node& node, const std::string& file, const std::string
   return *value;
 }
 
+bool Boolean(const toml::node& node, const std::string& file, const std::string& key) {
+  if (!node.is_boolean()) throw InputError({file, LineOf(node)}, key, "expected true or false");
+  return node.as_boolean()->get();
+}
+
 void ReadPlanner(const toml::table& table, const std::string& file, PlanningSettings* settings) {
   RrtStarParams& rrt = settings->rrt;
   for (const auto& [key, node] : table) {
@@ -74,6 +79,33 @@ void ReadPlanner(const toml::table& table, const std::string& file, PlanningSett
       throw InputError({file, LineOf(node)}, field,
                        "unknown key (expected clearance, max_iterations, time_budget, max_step, "
                        "goal_bias, rewire_factor, informed or shortcut_attempts)");
+    }
+  }
+}
+
+void ReadTrajectory(const toml::table& table, const std::string& file, PlanningSettings* settings) {
+  TrajectoryParams& params = settings->trajectory;
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    const std::string field = "trajectory." + name;
+    if (name == "max_speed") {
+      params.max_speed = Number(node, file, field, 0.01, 8.0);  // a Tello's top speed
+    } else if (name == "max_accel") {
+      params.max_accel = Number(node, file, field, 0.01, 10.0);
+    } else if (name == "clearance") {
+      settings->trajectory_clearance = Number(node, file, field, 0.0, 10.0);
+    } else if (name == "corridors") {
+      params.use_corridors = Boolean(node, file, field);
+    } else if (name == "corridor_growth") {
+      params.corridor_growth = Number(node, file, field, 0.0, 100.0);
+    } else if (name == "samples_per_segment") {
+      params.samples_per_segment = static_cast<int>(Number(node, file, field, 1, 1000));
+    } else if (name == "max_refinements") {
+      params.max_refinements = static_cast<int>(Number(node, file, field, 0, 100));
+    } else {
+      throw InputError({file, LineOf(node)}, field,
+                       "unknown key (expected max_speed, max_accel, clearance, corridors, "
+                       "corridor_growth, samples_per_segment or max_refinements)");
     }
   }
 }
@@ -133,7 +165,11 @@ Scenario ReadScenario(std::istream& in, const std::string& file) {
       const toml::table* section = node.as_table();
       if (section == nullptr) throw InputError(where, name, "expected a table [planner]");
       ReadPlanner(*section, file, &scenario.planning);
-    } else if (name == "trajectory" || name == "controller" || name == "render") {
+    } else if (name == "trajectory") {
+      const toml::table* section = node.as_table();
+      if (section == nullptr) throw InputError(where, name, "expected a table [trajectory]");
+      ReadTrajectory(*section, file, &scenario.planning);
+    } else if (name == "controller" || name == "render") {
       const toml::table* section = node.as_table();
       if (section == nullptr) throw InputError(where, name, "expected a table [" + name + "]");
       for (const auto& [inner, inner_node] : *section) {

@@ -22,7 +22,10 @@ namespace aerobox {
 //   [planner]                            # optional: clearance, max_iterations, time_budget,
 //                                        #   max_step, goal_bias, rewire_factor, informed,
 //                                        #   shortcut_attempts (see planning_settings.h)
-//   [trajectory] [controller] [render]   # optional tables (no keys defined yet)
+//   [trajectory]                         # optional: max_speed, max_accel, clearance,
+//                                        #   corridors, corridor_growth, samples_per_segment,
+//                                        #   max_refinements
+//   [controller] [render]                # optional tables (no keys defined yet)
 struct Scenario {
   std::string name;
   std::string file;      // the scenario file, for messages

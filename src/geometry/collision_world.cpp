@@ -142,6 +142,11 @@ bool CollisionWorld::IsSegmentFree(const Vec3& a, const Vec3& b) const {
   return !tree_->AnyCandidate(span, [&](size_t i) { return SegmentEntersBox(a, b, grown_[i]); });
 }
 
+bool CollisionWorld::IsBoxFree(const Aabb& box) const {
+  if (!box.min.allFinite() || !box.max.allFinite() || !box.IsInside(free_bounds_)) return false;
+  return !tree_->AnyCandidate(box, [&](size_t i) { return grown_[i].Overlaps(box); });
+}
+
 double CollisionWorld::Clearance(const Vec3& p) const {
   // distance between the vehicle's box at p and box i = distance from p to box i grown by the
   // vehicle's half-size; the tree holds boxes grown by half-size + clearance, so a tree node's

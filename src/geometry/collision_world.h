@@ -52,6 +52,10 @@ class CollisionWorld {
   // keeps `clearance` from every obstacle and stays within the bounds. Exact, not sampled.
   bool IsSegmentFree(const Vec3& a, const Vec3& b) const;
 
+  // True when every vehicle-centre position in `box` [m] is free: the box lies in free_bounds()
+  // and meets no grown obstacle's interior. (Safe corridors are built from this.)
+  bool IsBoxFree(const Aabb& box) const;
+
   // Distance from the vehicle's box at p (without clearance) to the nearest map box [m]; 0 when
   // they touch or overlap; +infinity for a map without boxes. The floor and the bounds are
   // not obstacles here.

@@ -27,6 +27,28 @@ void CheckPlan(const std::string& path, bool expect_path) {
   // moved endpoints moved by less than the search radius plus the margin
   CHECK(plan.start.moved < 0.5 + 0.2);
   CHECK(plan.goal.moved < 0.5 + 0.2);
+
+  // the trajectory along the path: solved, within its limits, and free when re-checked densely
+  // by the second method (positions at most 1 cm apart, brute force over the map's boxes)
+  REQUIRE(plan.trajectory);
+  const TrajectoryResult& trajectory = *plan.trajectory;
+  REQUIRE(trajectory.status == TrajectoryStatus::kSolved);
+  const TrajectoryParams& limits = setup.planning.trajectory;
+  const double dt = 0.01 / limits.max_speed;
+  std::vector<Vec3> samples;
+  for (double t = 0; t < trajectory.trajectory.duration() + dt; t += dt) {
+    samples.push_back(trajectory.trajectory.Evaluate(t, kPosition));
+    // the scale to the limits is found on 10 ms samples: 0.5 % covers what lies between
+    CHECK(trajectory.trajectory.Evaluate(t, kVelocity).norm() <= 1.005 * limits.max_speed);
+    CHECK(trajectory.trajectory.Evaluate(t, kAcceleration).norm() <= 1.005 * limits.max_accel);
+  }
+  CollisionParams trajectory_clearance = setup.planning.collision;
+  trajectory_clearance.clearance = setup.planning.trajectory_clearance;
+  CHECK(testing::DenselyFree(setup.map, trajectory_clearance, samples));
+  CHECK((samples.front() - plan.start.used).norm() < 1e-9);
+  CHECK(
+      (trajectory.trajectory.Evaluate(trajectory.trajectory.duration(), kPosition) - plan.goal.used)
+          .norm() < 1e-9);
 }
 
 }  // namespace

@@ -1,0 +1,52 @@
+// Minimum-snap trajectories through waypoints (Mellinger and Kumar 2011): minimise the integral
+// of squared snap over degree-7 segments with fixed durations, subject to the waypoints, continuity
+// of velocity, acceleration, jerk and snap at interior waypoints, rest (v = a = j = 0) at both
+// ends and, optionally, samples of every segment inside an axis-aligned box (a safe corridor).
+// A quadratic programme: solved in closed form (equalities only, a sparse KKT system) or with
+// Ipopt (with the box constraints; Ipopt stays inside the .cpp).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "trajectory/polynomial.h"
+
+namespace aerobox {
+
+struct MinSnapProblem {
+  std::vector<Vec3> waypoints;    // at least 2 [m]
+  std::vector<double> durations;  // one per segment, > 0 [s]
+  // Per segment, optional: the box its samples must stay in [m]. Empty vector: no boxes.
+  std::vector<std::optional<Aabb>> corridors;
+  // Interior samples per segment at which a corridor is enforced (s = k / (n + 1)).
+  int samples_per_segment = 16;
+
+  // Throws std::invalid_argument for inconsistent sizes or non-positive durations.
+  void Validate() const;
+};
+
+// The equality-constrained optimum (corridors ignored), from the KKT system
+// [2Q A'; A 0] [c; l] = [0; b] solved with a sparse LU per axis.
+PiecewiseTrajectory SolveMinSnapClosedForm(const MinSnapProblem& problem);
+
+enum class SolveStatus { kSolved, kInfeasible, kFailed };
+const char* ToString(SolveStatus status);
+
+struct IpoptSettings {
+  double tolerance = 1e-9;   // Ipopt's "tol"
+  int max_iterations = 200;  // Ipopt's "max_iter"
+};
+
+struct MinSnapSolution {
+  SolveStatus status = SolveStatus::kFailed;
+  std::string message;             // Ipopt's return status, in words
+  PiecewiseTrajectory trajectory;  // valid when status is kSolved
+  int solver_iterations = 0;
+};
+
+// The full problem with Ipopt, started from the closed-form solution.
+MinSnapSolution SolveMinSnapIpopt(const MinSnapProblem& problem,
+                                  const IpoptSettings& settings = {});
+
+}  // namespace aerobox

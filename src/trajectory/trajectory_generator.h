@@ -1,0 +1,77 @@
+// From a planner's path to a smooth, dynamically feasible, collision-free trajectory:
+// trapezoidal time allocation, safe corridors, minimum snap with Ipopt, a uniform time scale
+// to the speed and acceleration limits, and collision-aware refinement (Richter, Bry and Roy
+// 2013: where the trajectory leaves free space, the path segment's midpoint becomes a waypoint).
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "trajectory/corridor.h"
+#include "trajectory/min_snap.h"
+
+namespace aerobox {
+
+struct TrajectoryParams {
+  double max_speed = 2.0;        // [m/s] (a Tello does 8; tracking is tighter when slower)
+  double max_accel = 2.0;        // [m/s^2]
+  bool use_corridors = true;     // false: equality constraints only (closed form, no Ipopt)
+  double corridor_growth = 1.0;  // how far a corridor may reach past its segment's box [m]
+  // kept between the constrained samples and the corridor's faces [m]: more than the
+  // trajectory bulges between samples, so the corridor holds everywhere, not only at samples
+  double corridor_margin = 0.01;
+  int samples_per_segment = 16;  // constrained samples per segment
+  int max_refinements = 8;       // rounds of inserting midpoints where the trajectory collides
+  double check_step = 0.01;      // [s] between samples of the collision check and the limits
+  IpoptSettings ipopt;
+
+  // Throws std::invalid_argument naming the field and value.
+  void Validate() const;
+};
+
+// The world as the trajectory generator sees it (vehicle-centre positions, no map types).
+struct TrajectoryWorld {
+  BoxFree box_free;
+  std::function<bool(const Vec3&, const Vec3&)> segment_free;
+};
+
+enum class TrajectoryStatus {
+  kSolved,
+  kInfeasible,  // the optimiser found no trajectory inside the corridors
+  kFailed,      // the optimiser failed for another reason (see message)
+  kCollides,    // still collides after max_refinements rounds
+};
+const char* ToString(TrajectoryStatus status);
+
+struct TrajectoryStats {
+  int refinements = 0;  // midpoint insertions done
+  int segments = 0;
+  double solve_time = 0.0;     // [s] wall time of the whole generation
+  double duration = 0.0;       // [s]
+  double max_speed = 0.0;      // [m/s], sampled
+  double max_accel = 0.0;      // [m/s^2], sampled
+  double snap_cost = 0.0;      // [m^2/s^7]
+  std::string solver_message;  // Ipopt's last return status
+};
+
+struct TrajectoryResult {
+  TrajectoryStatus status = TrajectoryStatus::kFailed;
+  PiecewiseTrajectory trajectory;
+  std::vector<Vec3> waypoints;                 // after splitting and refinement
+  std::vector<std::optional<Aabb>> corridors;  // one per segment (nothing: bounds only)
+  TrajectoryStats stats;
+};
+
+// The path must be collision-free (as RRT* returns it); its first and last points are where the
+// trajectory starts and ends at rest.
+TrajectoryResult GenerateTrajectory(const std::vector<Vec3>& path, const TrajectoryWorld& world,
+                                    const TrajectoryParams& params);
+
+// Where the trajectory, sampled every `step` seconds, first leaves free space: the time [s],
+// or nothing when it stays free.
+std::optional<double> FirstCollisionTime(const PiecewiseTrajectory& trajectory,
+                                         const TrajectoryWorld& world, double step);
+
+}  // namespace aerobox
