@@ -16,8 +16,8 @@ packages=(
   libfcl-dev libnanoflann-dev
   # src/trajectory: Ipopt (with MUMPS) for the corridor-constrained minimum-snap QP
   coinor-libipopt-dev
-  # src/app: command line and scenario files
-  libcli11-dev libtomlplusplus-dev
+  # src/app: command line, scenario files, aerobox bench
+  libcli11-dev libtomlplusplus-dev libbenchmark-dev
   # tests/
   doctest-dev
 )

@@ -10,6 +10,7 @@
 #include "app/plan_job.h"
 #include "app/planner_comparison.h"
 #include "app/scenario.h"
+#include "app/solver_comparison.h"
 #include "common/error.h"
 #include "common/number_format.h"
 #include "scene/scene_mjcf.h"
@@ -184,8 +185,18 @@ int RunPlan(const FlightSetup& setup, const std::string& out_dir, std::ostream& 
   return kExitReachedGoal;
 }
 
-int RunBench(const std::string& scenes, const std::string& maps, int seeds, double seconds,
-             std::ostream& out, std::ostream& err) {
+int RunBench(const std::string& sections, const std::string& scenes, const std::string& maps,
+             int seeds, double seconds, std::ostream& out, std::ostream& err) {
+  const auto wanted = [&sections](const char* name) {
+    return sections == "all" ||
+           ("," + sections + ",").find(std::string(",") + name + ",") != std::string::npos;
+  };
+  if (wanted("trajectory")) {
+    out << "## Minimum snap: Ipopt against the closed-form solve (medians of 5 repetitions)\n\n";
+    CompareMinSnapSolvers(out, err);
+    out << "\n";
+  }
+  if (!wanted("planning")) return kExitReachedGoal;
   std::vector<PlanningProblem> problems;
   std::istringstream names(maps);
   std::string name;
@@ -248,12 +259,15 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   plan->add_option("--seed", seed, "random seed (default: the scenario's, else 1)")
       ->each([&seed_given](const std::string&) { seed_given = true; });
 
+  std::string bench_sections = "all";
   std::string bench_scenes = "scenes";
   std::string bench_maps = "window,maze,forest,over_under";
   int bench_seeds = 20;
   double bench_seconds = 1.0;
   CLI::App* bench = app.add_subcommand(
       "bench", "performance tables: RRT* against OMPL's (when built with AEROBOX_WITH_OMPL)");
+  bench->add_option("--sections", bench_sections, "all, or some of: trajectory,planning")
+      ->capture_default_str();
   bench->add_option("--scenes", bench_scenes, "folder with the scenes")->capture_default_str();
   bench->add_option("--maps", bench_maps, "comma-separated scene names")->capture_default_str();
   bench->add_option("--seeds", bench_seeds, "runs per planner and map")
@@ -280,7 +294,8 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   try {
     if (model->parsed()) return RunModel(output, out);
     if (bench->parsed()) {
-      return RunBench(bench_scenes, bench_maps, bench_seeds, bench_seconds, out, err);
+      return RunBench(bench_sections, bench_scenes, bench_maps, bench_seeds, bench_seconds, out,
+                      err);
     }
     SetupOverrides overrides;
     overrides.start = ParsePointOption(start_text, "--start");

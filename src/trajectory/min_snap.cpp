@@ -5,6 +5,7 @@
 #include <IpIpoptApplication.hpp>
 #include <IpSolveStatistics.hpp>
 #include <IpTNLP.hpp>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -16,15 +17,26 @@ using Triplets = std::vector<Eigen::Triplet<double>>;
 
 constexpr int kAxes = 3;
 
-// The QP of one axis (the three axes share its structure): variables are the 8 coefficients of
-// each segment, segment after segment. Cost x'Qx; equalities A x = b; inequalities l <= G x <= u.
+// The QP of one axis (the three axes share its structure except for right-hand sides).
+//
+// The unknowns are not the 8 coefficients of each segment but the derivatives at the waypoints
+// that are still free: velocity, acceleration and jerk at each interior waypoint (Richter, Bry
+// and Roy 2013). A segment's coefficients follow linearly from the position, velocity,
+// acceleration and jerk at its two ends, so the waypoint positions, rest at both ends and
+// continuity of velocity, acceleration and jerk hold by construction; continuity of snap stays
+// an equality. The same QP as over the coefficients, in fewer variables, which keeps Ipopt's
+// linear systems small. coefficients = P z + q; cost z'Hz + f'z (+ constant); equalities
+// A z = b; inequalities l <= G z <= u.
 struct AxisQp {
-  SparseMatrix cost;        // Q, symmetric
-  SparseMatrix equality;    // A
-  SparseMatrix inequality;  // G
-  Eigen::MatrixXd rhs;      // b, one column per axis
-  Eigen::MatrixXd lower;    // l, one column per axis
-  Eigen::MatrixXd upper;    // u, one column per axis
+  SparseMatrix cost;             // H, symmetric
+  Eigen::MatrixXd linear;        // f, one column per axis
+  SparseMatrix equality;         // A
+  SparseMatrix inequality;       // G
+  Eigen::MatrixXd rhs;           // b, one column per axis
+  Eigen::MatrixXd lower;         // l, one column per axis
+  Eigen::MatrixXd upper;         // u, one column per axis
+  SparseMatrix to_coefficients;  // P
+  Eigen::MatrixXd offset;        // q, one column per axis
 };
 
 double FallingFactorial(int k, int r) {
@@ -33,12 +45,47 @@ double FallingFactorial(int k, int r) {
   return f;
 }
 
+// Index of the free derivative of order r (1..3) at interior waypoint j (1..M-1).
+int FreeIndex(int j, int r) { return (j - 1) * kJerk + (r - 1); }
+
 AxisQp BuildQp(const MinSnapProblem& problem) {
   const int segments = static_cast<int>(problem.durations.size());
   const int n = segments * kCoefficients;
-  AxisQp qp;
+  const int free = kJerk * (segments - 1);
 
-  // cost: per segment T^-7 * integral_0^1 (d^4/ds^4)^2 (see PolynomialSegment::SnapCost)
+  // P and q: each segment's coefficients from the derivatives at its ends, c = B^-1 d, where
+  // B stacks the derivatives 0..3 at s = 0 and at s = 1
+  Triplets to_coefficients;
+  Eigen::MatrixXd offset = Eigen::MatrixXd::Zero(n, kAxes);
+  for (int i = 0; i < segments; ++i) {
+    const double t = problem.durations[i];
+    Eigen::Matrix<double, kCoefficients, kCoefficients> ends;
+    for (int r = 0; r <= kJerk; ++r) {
+      ends.row(r) = Basis(0.0, r, t);
+      ends.row(kJerk + 1 + r) = Basis(1.0, r, t);
+    }
+    const Eigen::Matrix<double, kCoefficients, kCoefficients> inverse = ends.inverse();
+    for (int e = 0; e < kCoefficients; ++e) {
+      const int knot = i + e / (kJerk + 1);
+      const int r = e % (kJerk + 1);
+      for (int row = 0; row < kCoefficients; ++row) {
+        const double h = inverse(row, e);
+        if (h == 0.0) continue;
+        if (r == kPosition) {
+          offset.row(i * kCoefficients + row) += h * problem.waypoints[knot].transpose();
+        } else if (knot != 0 && knot != segments) {  // rest at both ends: zero, not free
+          to_coefficients.emplace_back(i * kCoefficients + row, FreeIndex(knot, r), h);
+        }
+      }
+    }
+  }
+  AxisQp qp;
+  qp.to_coefficients.resize(n, free);
+  qp.to_coefficients.setFromTriplets(to_coefficients.begin(), to_coefficients.end());
+  qp.offset = offset;
+  const SparseMatrix& p = qp.to_coefficients;
+
+  // the snap cost over the coefficients: per segment T^-7 integral_0^1 (d^4/ds^4)^2
   Triplets cost;
   for (int i = 0; i < segments; ++i) {
     const double scale = std::pow(problem.durations[i], -7);
@@ -49,46 +96,27 @@ AxisQp BuildQp(const MinSnapProblem& problem) {
       }
     }
   }
-  qp.cost.resize(n, n);
-  qp.cost.setFromTriplets(cost.begin(), cost.end());
+  SparseMatrix coefficient_cost(n, n);
+  coefficient_cost.setFromTriplets(cost.begin(), cost.end());
+  qp.cost = SparseMatrix(p.transpose() * coefficient_cost * p);
+  qp.linear = 2.0 * (p.transpose() * (coefficient_cost * offset));
 
-  // equalities, one row at a time; `targets` holds the right-hand side per axis
-  Triplets rows;
-  std::vector<Vec3> targets;
-  const auto add_row = [&](int segment, const BasisRow& basis, double sign) {
+  // continuity of snap at interior waypoints
+  Triplets snap;
+  for (int j = 1; j < segments; ++j) {
+    const BasisRow end = Basis(1.0, kSnap, problem.durations[j - 1]);
+    const BasisRow start = Basis(0.0, kSnap, problem.durations[j]);
     for (int k = 0; k < kCoefficients; ++k) {
-      if (basis[k] != 0.0) {
-        rows.emplace_back(static_cast<int>(targets.size()), segment * kCoefficients + k,
-                          sign * basis[k]);
-      }
-    }
-  };
-  for (int i = 0; i < segments; ++i) {
-    const double t = problem.durations[i];
-    add_row(i, Basis(0.0, kPosition, t), 1.0);
-    targets.push_back(problem.waypoints[i]);
-    add_row(i, Basis(1.0, kPosition, t), 1.0);
-    targets.push_back(problem.waypoints[i + 1]);
-  }
-  for (int r = kVelocity; r <= kJerk; ++r) {  // rest at both ends
-    add_row(0, Basis(0.0, r, problem.durations.front()), 1.0);
-    targets.push_back(Vec3::Zero());
-    add_row(segments - 1, Basis(1.0, r, problem.durations.back()), 1.0);
-    targets.push_back(Vec3::Zero());
-  }
-  for (int i = 1; i < segments; ++i) {  // continuity at interior waypoints
-    for (int r = kVelocity; r <= kSnap; ++r) {
-      add_row(i - 1, Basis(1.0, r, problem.durations[i - 1]), 1.0);
-      add_row(i, Basis(0.0, r, problem.durations[i]), -1.0);
-      targets.push_back(Vec3::Zero());
+      snap.emplace_back(j - 1, (j - 1) * kCoefficients + k, end[k]);
+      snap.emplace_back(j - 1, j * kCoefficients + k, -start[k]);
     }
   }
-  qp.equality.resize(static_cast<int>(targets.size()), n);
-  qp.equality.setFromTriplets(rows.begin(), rows.end());
-  qp.rhs.resize(static_cast<int>(targets.size()), kAxes);
-  for (size_t r = 0; r < targets.size(); ++r) qp.rhs.row(static_cast<int>(r)) = targets[r];
+  SparseMatrix continuity(segments - 1, n);
+  continuity.setFromTriplets(snap.begin(), snap.end());
+  qp.equality = SparseMatrix(continuity * p);
+  qp.rhs = -(continuity * offset);
 
-  // inequalities: corridor samples
+  // corridor samples
   Triplets samples;
   std::vector<Aabb> boxes;
   for (int i = 0; i < segments && !problem.corridors.empty(); ++i) {
@@ -103,18 +131,22 @@ AxisQp BuildQp(const MinSnapProblem& problem) {
     }
   }
   const int m_in = static_cast<int>(boxes.size());
-  qp.inequality.resize(m_in, n);
-  qp.inequality.setFromTriplets(samples.begin(), samples.end());
+  SparseMatrix sample_rows(m_in, n);
+  sample_rows.setFromTriplets(samples.begin(), samples.end());
+  qp.inequality = SparseMatrix(sample_rows * p);
+  const Eigen::MatrixXd fixed_part = sample_rows * offset;
   qp.lower.resize(m_in, kAxes);
   qp.upper.resize(m_in, kAxes);
   for (int r = 0; r < m_in; ++r) {
-    qp.lower.row(r) = boxes[r].min;
-    qp.upper.row(r) = boxes[r].max;
+    qp.lower.row(r) = boxes[r].min.transpose() - fixed_part.row(r);
+    qp.upper.row(r) = boxes[r].max.transpose() - fixed_part.row(r);
   }
   return qp;
 }
 
-PiecewiseTrajectory ToTrajectory(const MinSnapProblem& problem, const Eigen::MatrixXd& x) {
+PiecewiseTrajectory ToTrajectory(const MinSnapProblem& problem, const AxisQp& qp,
+                                 const Eigen::MatrixXd& z) {
+  const Eigen::MatrixXd x = qp.to_coefficients * z + qp.offset;
   std::vector<PolynomialSegment> segments;
   for (size_t i = 0; i < problem.durations.size(); ++i) {
     Eigen::MatrixXd coefficients(kAxes, kCoefficients);
@@ -127,10 +159,12 @@ PiecewiseTrajectory ToTrajectory(const MinSnapProblem& problem, const Eigen::Mat
   return PiecewiseTrajectory(std::move(segments));
 }
 
-// Closed-form coefficients: one column per axis.
+// Closed-form free derivatives, one column per axis: the KKT system
+// [2H A'; A 0] [z; l] = [-f; b] with a sparse LU.
 Eigen::MatrixXd SolveKkt(const AxisQp& qp) {
   const int n = static_cast<int>(qp.cost.rows());
   const int m = static_cast<int>(qp.equality.rows());
+  if (n == 0) return Eigen::MatrixXd::Zero(0, kAxes);
   Triplets kkt;
   for (int k = 0; k < qp.cost.outerSize(); ++k) {
     for (SparseMatrix::InnerIterator it(qp.cost, k); it; ++it) {
@@ -150,19 +184,31 @@ Eigen::MatrixXd SolveKkt(const AxisQp& qp) {
   if (lu.info() != Eigen::Success) {
     throw std::runtime_error("min-snap KKT system is singular (degenerate waypoints?)");
   }
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n + m, kAxes);
+  Eigen::MatrixXd rhs(n + m, kAxes);
+  rhs.topRows(n) = -qp.linear;
   rhs.bottomRows(m) = qp.rhs;
   const Eigen::MatrixXd solution = lu.solve(rhs);
   return solution.topRows(n);
 }
 
-// Ipopt's view: all three axes in one problem (block-diagonal), variables axis after axis.
+// One corridor sample of one axis: a row of G and the axis it bounds.
+struct ActiveRow {
+  int axis;
+  int row;
+  bool operator==(const ActiveRow& other) const { return axis == other.axis && row == other.row; }
+};
+
+// Ipopt's view: all three axes in one problem (block-diagonal), variables axis after axis; the
+// equalities of every axis, then the selected corridor rows.
 class MinSnapNlp : public Ipopt::TNLP {
  public:
-  MinSnapNlp(const AxisQp& qp, const Eigen::MatrixXd& start) : qp_(qp), start_(start) {
+  MinSnapNlp(const AxisQp& qp, const Eigen::MatrixXd& start, std::vector<ActiveRow> active)
+      : qp_(qp), start_(start), active_(std::move(active)) {
     n_axis_ = static_cast<int>(qp.cost.rows());
     m_eq_ = static_cast<int>(qp.equality.rows());
-    m_in_ = static_cast<int>(qp.inequality.rows());
+    m_in_ = static_cast<int>(active_.size());
+    inequality_rows_ = qp.inequality;  // row-major copy for row access
+
     // the lower triangle of the cost, for the Hessian
     for (int k = 0; k < qp.cost.outerSize(); ++k) {
       for (SparseMatrix::InnerIterator it(qp.cost, k); it; ++it) {
@@ -170,13 +216,18 @@ class MinSnapNlp : public Ipopt::TNLP {
           lower_.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
       }
     }
-    for (const SparseMatrix* block : {&qp.equality, &qp.inequality}) {
-      const int row_offset = block == &qp.equality ? 0 : m_eq_;
-      for (int k = 0; k < block->outerSize(); ++k) {
-        for (SparseMatrix::InnerIterator it(*block, k); it; ++it) {
-          jacobian_.emplace_back(row_offset + static_cast<int>(it.row()),
-                                 static_cast<int>(it.col()), it.value());
+    for (int axis = 0; axis < kAxes; ++axis) {
+      for (int k = 0; k < qp.equality.outerSize(); ++k) {
+        for (SparseMatrix::InnerIterator it(qp.equality, k); it; ++it) {
+          jacobian_.emplace_back(axis * m_eq_ + static_cast<int>(it.row()),
+                                 axis * n_axis_ + static_cast<int>(it.col()), it.value());
         }
+      }
+    }
+    for (int r = 0; r < m_in_; ++r) {
+      for (RowMajor::InnerIterator it(inequality_rows_, active_[r].row); it; ++it) {
+        jacobian_.emplace_back(kAxes * m_eq_ + r,
+                               active_[r].axis * n_axis_ + static_cast<int>(it.col()), it.value());
       }
     }
   }
@@ -184,8 +235,8 @@ class MinSnapNlp : public Ipopt::TNLP {
   bool get_nlp_info(Ipopt::Index& n, Ipopt::Index& m, Ipopt::Index& nnz_jac_g,
                     Ipopt::Index& nnz_h_lag, IndexStyleEnum& index_style) override {
     n = kAxes * n_axis_;
-    m = kAxes * (m_eq_ + m_in_);
-    nnz_jac_g = kAxes * static_cast<int>(jacobian_.size());
+    m = kAxes * m_eq_ + m_in_;
+    nnz_jac_g = static_cast<int>(jacobian_.size());
     nnz_h_lag = kAxes * static_cast<int>(lower_.size());
     index_style = C_STYLE;
     return true;
@@ -198,12 +249,12 @@ class MinSnapNlp : public Ipopt::TNLP {
       x_u[i] = 1e20;
     }
     for (int axis = 0; axis < kAxes; ++axis) {
-      const int offset = axis * (m_eq_ + m_in_);
-      for (int r = 0; r < m_eq_; ++r) g_l[offset + r] = g_u[offset + r] = qp_.rhs(r, axis);
-      for (int r = 0; r < m_in_; ++r) {
-        g_l[offset + m_eq_ + r] = qp_.lower(r, axis);
-        g_u[offset + m_eq_ + r] = qp_.upper(r, axis);
-      }
+      for (int r = 0; r < m_eq_; ++r)
+        g_l[axis * m_eq_ + r] = g_u[axis * m_eq_ + r] = qp_.rhs(r, axis);
+    }
+    for (int r = 0; r < m_in_; ++r) {
+      g_l[kAxes * m_eq_ + r] = qp_.lower(active_[r].row, active_[r].axis);
+      g_u[kAxes * m_eq_ + r] = qp_.upper(active_[r].row, active_[r].axis);
     }
     return true;
   }
@@ -220,7 +271,7 @@ class MinSnapNlp : public Ipopt::TNLP {
     value = 0.0;
     for (int axis = 0; axis < kAxes; ++axis) {
       const Eigen::Map<const Eigen::VectorXd> c(x + axis * n_axis_, n_axis_);
-      value += c.dot(qp_.cost * c);
+      value += c.dot(qp_.cost * c) + qp_.linear.col(axis).dot(c);
     }
     return true;
   }
@@ -228,7 +279,8 @@ class MinSnapNlp : public Ipopt::TNLP {
   bool eval_grad_f(Ipopt::Index, const Ipopt::Number* x, bool, Ipopt::Number* grad) override {
     for (int axis = 0; axis < kAxes; ++axis) {
       const Eigen::Map<const Eigen::VectorXd> c(x + axis * n_axis_, n_axis_);
-      Eigen::Map<Eigen::VectorXd>(grad + axis * n_axis_, n_axis_) = 2.0 * (qp_.cost * c);
+      Eigen::Map<Eigen::VectorXd>(grad + axis * n_axis_, n_axis_) =
+          2.0 * (qp_.cost * c) + qp_.linear.col(axis);
     }
     return true;
   }
@@ -236,9 +288,11 @@ class MinSnapNlp : public Ipopt::TNLP {
   bool eval_g(Ipopt::Index, const Ipopt::Number* x, bool, Ipopt::Index, Ipopt::Number* g) override {
     for (int axis = 0; axis < kAxes; ++axis) {
       const Eigen::Map<const Eigen::VectorXd> c(x + axis * n_axis_, n_axis_);
-      const int offset = axis * (m_eq_ + m_in_);
-      Eigen::Map<Eigen::VectorXd>(g + offset, m_eq_) = qp_.equality * c;
-      Eigen::Map<Eigen::VectorXd>(g + offset + m_eq_, m_in_) = qp_.inequality * c;
+      Eigen::Map<Eigen::VectorXd>(g + axis * m_eq_, m_eq_) = qp_.equality * c;
+    }
+    for (int r = 0; r < m_in_; ++r) {
+      const Eigen::Map<const Eigen::VectorXd> c(x + active_[r].axis * n_axis_, n_axis_);
+      g[kAxes * m_eq_ + r] = inequality_rows_.row(active_[r].row).dot(c);
     }
     return true;
   }
@@ -246,16 +300,14 @@ class MinSnapNlp : public Ipopt::TNLP {
   bool eval_jac_g(Ipopt::Index, const Ipopt::Number*, bool, Ipopt::Index, Ipopt::Index,
                   Ipopt::Index* rows, Ipopt::Index* cols, Ipopt::Number* values) override {
     int e = 0;
-    for (int axis = 0; axis < kAxes; ++axis) {
-      for (const Eigen::Triplet<double>& t : jacobian_) {
-        if (values == nullptr) {
-          rows[e] = axis * (m_eq_ + m_in_) + t.row();
-          cols[e] = axis * n_axis_ + t.col();
-        } else {
-          values[e] = t.value();
-        }
-        ++e;
+    for (const Eigen::Triplet<double>& t : jacobian_) {
+      if (values == nullptr) {
+        rows[e] = t.row();
+        cols[e] = t.col();
+      } else {
+        values[e] = t.value();
       }
+      ++e;
     }
     return true;
   }
@@ -291,8 +343,11 @@ class MinSnapNlp : public Ipopt::TNLP {
   const Eigen::MatrixXd& solution() const { return solution_; }
 
  private:
+  using RowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor>;
   const AxisQp& qp_;
   Eigen::MatrixXd start_;
+  std::vector<ActiveRow> active_;
+  RowMajor inequality_rows_;
   int n_axis_ = 0;
   int m_eq_ = 0;
   int m_in_ = 0;
@@ -379,38 +434,90 @@ const char* ToString(SolveStatus status) {
 
 PiecewiseTrajectory SolveMinSnapClosedForm(const MinSnapProblem& problem) {
   problem.Validate();
-  return ToTrajectory(problem, SolveKkt(BuildQp(problem)));
+  const AxisQp qp = BuildQp(problem);
+  return ToTrajectory(problem, qp, SolveKkt(qp));
 }
 
 MinSnapSolution SolveMinSnapIpopt(const MinSnapProblem& problem, const IpoptSettings& settings) {
   problem.Validate();
   const AxisQp qp = BuildQp(problem);
-  Ipopt::SmartPtr<MinSnapNlp> nlp = new MinSnapNlp(qp, SolveKkt(qp));
-  Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
-  // silent, no ipopt.opt read from the working folder, and the QP structure declared
-  app->Options()->SetIntegerValue("print_level", 0);
-  app->Options()->SetStringValue("sb", "yes");
-  app->Options()->SetStringValue("hessian_constant", "yes");
-  app->Options()->SetStringValue("jac_c_constant", "yes");
-  app->Options()->SetStringValue("jac_d_constant", "yes");
+  // one application per thread, configured once: creating and initialising one costs about as
+  // much as solving a 20-segment problem
+  thread_local Ipopt::SmartPtr<Ipopt::IpoptApplication> app;
+  thread_local bool ready = false;
+  MinSnapSolution result;
+  if (!ready) {
+    app = IpoptApplicationFactory();
+    // silent, no ipopt.opt read from the working folder, and the QP structure declared
+    app->Options()->SetIntegerValue("print_level", 0);
+    app->Options()->SetStringValue("sb", "yes");
+    app->Options()->SetStringValue("hessian_constant", "yes");
+    app->Options()->SetStringValue("jac_c_constant", "yes");
+    app->Options()->SetStringValue("jac_d_constant", "yes");
+    if (app->Initialize("") != Ipopt::Solve_Succeeded) {
+      result.message = "Ipopt did not initialise";
+      return result;
+    }
+    ready = true;
+  }
   app->Options()->SetNumericValue("tol", settings.tolerance);
   app->Options()->SetIntegerValue("max_iter", settings.max_iterations);
-  MinSnapSolution result;
-  if (app->Initialize("") != Ipopt::Solve_Succeeded) {
-    result.message = "Ipopt did not initialise";
+
+  // constraint generation: solve with the corridor samples that the current solution
+  // violates, add the ones the new solution violates, repeat. Each problem relaxes the full
+  // one, so a solution that meets every sample is the full problem's optimum; usually a few
+  // of the samples are active, and Ipopt's systems stay small.
+  Eigen::MatrixXd x = SolveKkt(qp);
+  if (x.rows() == 0) {
+    // a single segment is fully determined by its ends: nothing for Ipopt to choose
+    const bool inside = ((qp.lower.array() <= 0.0).all() && (qp.upper.array() >= 0.0).all());
+    result.status = inside ? SolveStatus::kSolved : SolveStatus::kInfeasible;
+    result.message = "one segment: determined by its ends";
+    if (inside) result.trajectory = ToTrajectory(problem, qp, x);
     return result;
   }
-  const Ipopt::ApplicationReturnStatus status = app->OptimizeTNLP(nlp);
-  result.message = Describe(status);
-  if (Ipopt::SmartPtr<Ipopt::SolveStatistics> stats = app->Statistics(); IsValid(stats)) {
-    result.solver_iterations = stats->IterationCount();
+  std::vector<ActiveRow> active;
+  const double slack = 1e-7;  // [m] below Ipopt's tolerance: a sample this close is met
+  for (int round = 0; round < settings.max_constraint_rounds; ++round) {
+    bool added = false;
+    for (int axis = 0; axis < kAxes; ++axis) {
+      const Eigen::VectorXd g = qp.inequality * x.col(axis);
+      for (int r = 0; r < g.size(); ++r) {
+        if (g[r] >= qp.lower(r, axis) - slack && g[r] <= qp.upper(r, axis) + slack) continue;
+        // a violated sample brings in every sample of its segment on this axis: the curve
+        // leaves the corridor over a stretch, and one round then usually settles it
+        const int first = r - r % problem.samples_per_segment;
+        for (int k = first; k < first + problem.samples_per_segment; ++k) {
+          const ActiveRow row{axis, k};
+          if (std::find(active.begin(), active.end(), row) == active.end()) {
+            active.push_back(row);
+            added = true;
+          }
+        }
+      }
+    }
+    if (round > 0 && !added) {
+      result.status = SolveStatus::kSolved;
+      result.trajectory = ToTrajectory(problem, qp, x);
+      return result;
+    }
+    Ipopt::SmartPtr<MinSnapNlp> nlp = new MinSnapNlp(qp, x, active);
+    const Ipopt::ApplicationReturnStatus status = app->OptimizeTNLP(nlp);
+    result.message = Describe(status);
+    if (Ipopt::SmartPtr<Ipopt::SolveStatistics> stats = app->Statistics(); IsValid(stats)) {
+      result.solver_iterations += stats->IterationCount();
+    }
+    if (status == Ipopt::Infeasible_Problem_Detected) {
+      result.status = SolveStatus::kInfeasible;
+      return result;
+    }
+    if (status != Ipopt::Solve_Succeeded && status != Ipopt::Solved_To_Acceptable_Level) {
+      return result;
+    }
+    x = nlp->solution();
   }
-  if (status == Ipopt::Solve_Succeeded || status == Ipopt::Solved_To_Acceptable_Level) {
-    result.status = SolveStatus::kSolved;
-    result.trajectory = ToTrajectory(problem, nlp->solution());
-  } else if (status == Ipopt::Infeasible_Problem_Detected) {
-    result.status = SolveStatus::kInfeasible;
-  }
+  result.message = "corridor samples still violated after " +
+                   std::to_string(settings.max_constraint_rounds) + " rounds";
   return result;
 }
 

@@ -35,17 +35,21 @@ const char* ToString(SolveStatus status);
 
 struct IpoptSettings {
   double tolerance = 1e-9;   // Ipopt's "tol"
-  int max_iterations = 200;  // Ipopt's "max_iter"
+  int max_iterations = 200;  // Ipopt's "max_iter", per solve
+  // Ipopt solves while adding violated corridor samples (see SolveMinSnapIpopt), at most.
+  int max_constraint_rounds = 10;
 };
 
 struct MinSnapSolution {
   SolveStatus status = SolveStatus::kFailed;
   std::string message;             // Ipopt's return status, in words
   PiecewiseTrajectory trajectory;  // valid when status is kSolved
-  int solver_iterations = 0;
+  int solver_iterations = 0;       // Ipopt's, summed over its solves
 };
 
-// The full problem with Ipopt, started from the closed-form solution.
+// The full problem with Ipopt, started from the closed-form solution. Corridor samples enter by
+// constraint generation: Ipopt first sees only those the closed form violates, then those its
+// own solution violates, until none is; Ipopt runs at least once.
 MinSnapSolution SolveMinSnapIpopt(const MinSnapProblem& problem,
                                   const IpoptSettings& settings = {});
 
