@@ -14,8 +14,9 @@ packages=(
   libmujoco-dev libqhull-dev libgl-dev libmujoco-samples
   # src/geometry: FCL's dynamic AABB tree (broad phase); src/planning: nanoflann's k-d tree
   libfcl-dev libnanoflann-dev
-  # src/trajectory: Ipopt (with MUMPS) for the corridor-constrained minimum-snap QP
-  coinor-libipopt-dev
+  # src/trajectory: Ipopt (with MUMPS) for the corridor-constrained minimum-snap QP; its
+  # pkg-config links -llapack -lblas, whose .so links come only with these -dev packages
+  coinor-libipopt-dev liblapack-dev libblas-dev
   # src/app: command line, scenario files, aerobox bench
   libcli11-dev libtomlplusplus-dev libbenchmark-dev
   # tests/
