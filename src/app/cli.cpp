@@ -7,6 +7,7 @@
 
 #include "app/exit_codes.h"
 #include "app/files.h"
+#include "app/fly_job.h"
 #include "app/plan_job.h"
 #include "app/planner_comparison.h"
 #include "app/scenario.h"
@@ -119,23 +120,6 @@ int RunScene(const FlightSetup& setup, const std::string& output, std::ostream& 
     WriteFileAtomically(output, xml);
   }
   return kExitReachedGoal;
-}
-
-// The output folder: --out, or renders/<scenario name>/; created, and proven writable before
-// any work starts.
-std::string PrepareOutputFolder(const std::string& requested, const std::string& name) {
-  namespace fs = std::filesystem;
-  const fs::path folder = requested.empty() ? fs::path("renders") / name : fs::path(requested);
-  std::error_code ec;
-  fs::create_directories(folder, ec);
-  if (ec || !fs::is_directory(folder)) {
-    throw InputError({folder.string(), 0}, "--out",
-                     "cannot create the output folder: " + ec.message());
-  }
-  const fs::path probe = folder / ".aerobox-write-test";
-  WriteFileAtomically(probe.string(), "");
-  fs::remove(probe, ec);
-  return folder.string();
 }
 
 int RunPlan(const FlightSetup& setup, const std::string& out_dir, std::ostream& out) {
@@ -277,6 +261,16 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
       ->capture_default_str()
       ->check(CLI::Range(0.2, 60.0));
 
+  bool no_video = false;
+  CLI::App* fly = app.add_subcommand(
+      "fly",
+      "plan, solve and fly a scenario in MuJoCo; write path, trajectory, telemetry, summary");
+  add_input(fly);
+  fly->add_option("--out", out_dir, "output folder (default: renders/<scenario name>/)");
+  fly->add_option("--seed", seed, "random seed (default: the scenario's, else 1)")
+      ->each([&seed_given](const std::string&) { seed_given = true; });
+  fly->add_flag("--no-video", no_video, "do not render (rendering is not built yet anyway)");
+
   CLI::App* check = app.add_subcommand(
       "check", "validate a map or scenario and print a summary (exit 2 when it is bad)");
   add_input(check);
@@ -304,6 +298,7 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     const FlightSetup setup = LoadFlightSetup(input, overrides);
     if (scene->parsed()) return RunScene(setup, output, out);
     if (plan->parsed()) return RunPlan(setup, out_dir, out);
+    if (fly->parsed()) return RunFly(setup, FlyOptions{out_dir, !no_video}, out, err);
     return RunCheck(setup, out);
   } catch (const InputError& error) {
     err << "aerobox: error: " << error.what() << "\n";

@@ -49,4 +49,18 @@ void WriteFileAtomically(const std::string& path, const std::string& text) {
   }
 }
 
+std::string PrepareOutputFolder(const std::string& requested, const std::string& name) {
+  const fs::path folder = requested.empty() ? fs::path("renders") / name : fs::path(requested);
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (ec || !fs::is_directory(folder)) {
+    throw InputError({folder.string(), 0}, "--out",
+                     "cannot create the output folder: " + ec.message());
+  }
+  const fs::path probe = folder / ".aerobox-write-test";
+  WriteFileAtomically(probe.string(), "");
+  fs::remove(probe, ec);
+  return folder.string();
+}
+
 }  // namespace aerobox

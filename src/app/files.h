@@ -13,4 +13,8 @@ std::string ReadTextFile(const std::string& path);
 // removes the temporary file).
 void WriteFileAtomically(const std::string& path, const std::string& text);
 
+// The output folder: `requested`, or renders/<name>/ when it is empty; created, and proven
+// writable (a probe file is written and removed) before any work starts. Throws InputError.
+std::string PrepareOutputFolder(const std::string& requested, const std::string& name);
+
 }  // namespace aerobox

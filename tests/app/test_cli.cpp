@@ -1,5 +1,6 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <sstream>
 #include <vector>
 
@@ -154,6 +155,50 @@ TEST_CASE("model writes the vehicle's MJCF") {
   const Run run = Aerobox({"model"});
   CHECK(run.code == kExitReachedGoal);
   CHECK(run.out.find("<body name=\"quad\"") != std::string::npos);
+}
+
+}  // namespace aerobox
+
+namespace aerobox {
+
+TEST_CASE("fly: plans, flies and writes path, trajectory, telemetry and summary") {
+  const testing::TempDir dir;
+  const std::string room = dir.Write("room.txt", "boundary 0 0 0 6 6 2\nblock 2.5 0 0 3 4.5 2\n");
+  const std::string out = (dir.path() / "out").string();
+  std::vector<const char*> argv = {"aerobox", "fly",   room.c_str(), "--start",   "1,1,0",
+                                   "--goal",  "5,1,1", "--out",      out.c_str(), "--no-video"};
+  std::ostringstream stdout_text, stderr_text;
+  const int code = RunCli(static_cast<int>(argv.size()), argv.data(), stdout_text, stderr_text);
+  CAPTURE(stdout_text.str());
+  CAPTURE(stderr_text.str());
+  REQUIRE(code == kExitReachedGoal);
+  CHECK(stdout_text.str().find("flight      reached goal") != std::string::npos);
+  for (const char* name : {"path.csv", "trajectory.csv", "telemetry.csv", "summary.json"}) {
+    CAPTURE(name);
+    CHECK(std::filesystem::exists(std::filesystem::path(out) / name));
+  }
+  const std::string telemetry = testing::ReadFile(std::filesystem::path(out) / "telemetry.csv");
+  // the contract's columns, in order, then ours
+  CHECK(telemetry.rfind("t,x,y,z,vx,vy,vz,qw,qx,qy,qz,wx,wy,wz,x_des,y_des,z_des,vx_des,vy_des,"
+                        "vz_des,ax_des,ay_des,az_des,f1,f2,f3,f4,pos_err,",
+                        0) == 0);
+  CHECK(std::count(telemetry.begin(), telemetry.end(), '\n') > 100);
+  const std::string summary = testing::ReadFile(std::filesystem::path(out) / "summary.json");
+  CHECK(summary.find("\"status\": \"reached goal\"") != std::string::npos);
+  CHECK(summary.find("\"tracking_rms_m\"") != std::string::npos);
+  CHECK(summary.find("\"min_clearance_m\"") != std::string::npos);
+  CHECK(summary.find("\"seed\": 1") != std::string::npos);
+
+  // the same seed gives byte-identical path, trajectory and telemetry
+  const std::string again = (dir.path() / "again").string();
+  argv[8] = again.c_str();
+  std::ostringstream ignored;
+  REQUIRE(RunCli(static_cast<int>(argv.size()), argv.data(), ignored, ignored) == kExitReachedGoal);
+  for (const char* name : {"path.csv", "trajectory.csv", "telemetry.csv"}) {
+    CAPTURE(name);
+    CHECK(testing::ReadFile(std::filesystem::path(out) / name) ==
+          testing::ReadFile(std::filesystem::path(again) / name));
+  }
 }
 
 }  // namespace aerobox

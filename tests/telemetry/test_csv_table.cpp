@@ -19,3 +19,24 @@ TEST_CASE("CSV text: header, shortest numbers, fixed column count") {
 }
 
 }  // namespace aerobox
+
+#include <limits>
+
+#include "telemetry/json_object.h"
+
+namespace aerobox {
+
+TEST_CASE("JSON summaries: order kept, numbers exact, strings escaped, no NaN") {
+  JsonObject inner;
+  inner.Add("mujoco", "2.2.2");
+  JsonObject summary;
+  summary.Add("status", "reached \"goal\"").Add("seed", 7).Add("rms", 0.1);
+  summary.Add("none", std::numeric_limits<double>::infinity());
+  summary.Add("ok", true).Add("versions", inner);
+  CHECK(
+      summary.Text() ==
+      "{\n  \"status\": \"reached \\\"goal\\\"\",\n  \"seed\": 7,\n  \"rms\": 0.1,\n"
+      "  \"none\": null,\n  \"ok\": true,\n  \"versions\": {\n    \"mujoco\": \"2.2.2\"\n  }\n}\n");
+}
+
+}  // namespace aerobox

@@ -1,0 +1,130 @@
+#include "app/fly_job.h"
+
+#include <chrono>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+#include "app/exit_codes.h"
+#include "app/files.h"
+#include "app/plan_job.h"
+#include "common/number_format.h"
+#include "planning/path_simplify.h"
+#include "scene/scene_mjcf.h"
+#include "telemetry/json_object.h"
+
+namespace aerobox {
+namespace fs = std::filesystem;
+
+CsvTable TelemetryTable() {
+  return CsvTable({"t",          "x",      "y",      "z",      "vx",       "vy",     "vz",
+                   "qw",         "qx",     "qy",     "qz",     "wx",       "wy",     "wz",
+                   "x_des",      "y_des",  "z_des",  "vx_des", "vy_des",   "vz_des", "ax_des",
+                   "ay_des",     "az_des", "f1",     "f2",     "f3",       "f4",     "pos_err",
+                   "thrust_cmd", "wx_sp",  "wy_sp",  "wz_sp",  "tau_x",    "tau_y",  "tau_z",
+                   "f1_cmd",     "f2_cmd", "f3_cmd", "f4_cmd", "clearance"});
+}
+
+void AddTelemetryRow(const TelemetrySample& s, CsvTable* table) {
+  Eigen::VectorXd row(40);
+  const Quat& q = s.state.q_WB;
+  row << s.t, s.state.p_W, s.state.v_W, q.w(), q.x(), q.y(), q.z(), s.state.w_B, s.setpoint.p_W,
+      s.setpoint.v_W, s.setpoint.a_W, s.rotor_thrusts, s.position_error, s.control.attitude.thrust,
+      s.control.rate_setpoint_B, s.control.torque_B, s.control.mixer.thrusts,
+      std::isfinite(s.clearance) ? s.clearance : -1.0;
+  table->AddRow(row);
+}
+
+int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& out,
+           std::ostream& err) {
+  const std::string folder = PrepareOutputFolder(options.out_dir, setup.name);
+  const auto file = [&folder](const char* name) { return (fs::path(folder) / name).string(); };
+
+  // plan and solve
+  const PlanOutcome plan = PlanFlight(setup);
+  JsonObject summary;
+  summary.Add("scenario", setup.name).Add("seed", static_cast<long long>(setup.seed));
+  const auto finish = [&](const char* status, int code) {
+    summary.Add("status", status);
+    JsonObject versions;
+    versions.Add("aerobox", AEROBOX_VERSION).Add("mujoco", mj_versionString());
+    summary.Add("versions", versions);
+    WriteFileAtomically(file("summary.json"), summary.Text());
+    return code;
+  };
+  summary.Add("planning_time_s", plan.result.stats.planning_time)
+      .Add("planner_iterations", static_cast<long long>(plan.result.stats.iterations));
+  if (plan.result.status != PlanStatus::kSolved) {
+    out << "fly " << setup.name << ": " << ToString(plan.result.status) << "\n";
+    return finish("no path", kExitNoPath);
+  }
+  WriteFileAtomically(file("path.csv"), PathCsv(plan.result.path));
+  summary.Add("path_length_m", PathLength(plan.result.path));
+  const TrajectoryResult& trajectory = *plan.trajectory;
+  summary.Add("trajectory_time_s", trajectory.stats.solve_time)
+      .Add("trajectory_duration_s", trajectory.stats.duration)
+      .Add("trajectory_max_speed_mps", trajectory.stats.max_speed)
+      .Add("trajectory_max_accel_mps2", trajectory.stats.max_accel);
+  if (trajectory.status != TrajectoryStatus::kSolved) {
+    out << "fly " << setup.name << ": no trajectory (" << trajectory.stats.solver_message << ")\n";
+    return finish("no feasible trajectory", kExitNoTrajectory);
+  }
+  WriteFileAtomically(file("trajectory.csv"), TrajectoryCsv(trajectory.trajectory));
+
+  // fly: the vehicle rests at the start (on the floor when the start is at floor level)
+  const QuadParams vehicle;
+  Simulation sim = Simulation::FromXml(SceneMjcfFor(setup), setup.name + " (scene)");
+  const Vec3 rest = VehicleRestPosition(setup.map, vehicle, setup.start);
+  if (rest.z() > setup.map.bounds.min.z() + 0.5 * vehicle.collision_size.z() + 1e-9) {
+    // in the air: start at the trajectory's first point, rotors at hover thrust
+    sim.SetVehicleState(State{plan.start.used, Vec3::Zero(), Quat::Identity(), Vec3::Zero()});
+    sim.SetRotorThrusts(Vec4::Constant(vehicle.HoverThrustPerRotor()));
+  }
+  const CollisionWorld world(setup.map, CollisionParams{vehicle.collision_size, 0.0});
+  CsvTable telemetry = TelemetryTable();
+  const auto begin = std::chrono::steady_clock::now();
+  const FlightResult flight = FlyTrajectory(
+      ReferenceOf(trajectory.trajectory), FlightParams(), vehicle,
+      [&world](const Vec3& p) { return world.Clearance(p); },
+      [&telemetry](const TelemetrySample& s) { AddTelemetryRow(s, &telemetry); }, &sim);
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  WriteFileAtomically(file("telemetry.csv"), telemetry.Text());
+
+  summary.Add("flight_status", ToString(flight.status))
+      .Add("flight_time_s", flight.time)
+      .Add("flight_wall_time_s", wall)
+      .Add("tracking_rms_m", flight.rms_error)
+      .Add("tracking_max_m", flight.max_error)
+      .Add("min_clearance_m", flight.min_clearance)
+      .Add("collisions", flight.status == FlightStatus::kCollision ? 1 : 0)
+      .Add("collision_with", flight.obstacle)
+      .Add("telemetry_rate_hz", 1.0 / (sim.timestep() * FlightParams().cascade.outer_divider))
+      .Add("video", options.video ? "not available: rendering is not built yet" : "off");
+
+  std::ostringstream table;
+  table << std::fixed << std::setprecision(3);
+  table << "fly " << setup.name << " (seed " << setup.seed << ")\n"
+        << "  path        " << PathLength(plan.result.path) << " m, " << plan.result.path.size()
+        << " waypoints, planned in " << plan.result.stats.planning_time << " s\n"
+        << "  trajectory  " << trajectory.stats.duration << " s, max " << trajectory.stats.max_speed
+        << " m/s, solved in " << trajectory.stats.solve_time << " s\n"
+        << "  flight      " << ToString(flight.status) << " after " << flight.time << " s (" << wall
+        << " s wall)";
+  if (!flight.obstacle.empty()) table << ", hit " << flight.obstacle;
+  table << "\n  tracking    RMS " << flight.rms_error << " m, max " << flight.max_error
+        << " m; min clearance ";
+  if (std::isfinite(flight.min_clearance)) {
+    table << flight.min_clearance << " m\n";
+  } else {
+    table << "none (no obstacles)\n";
+  }
+  table << "  files       " << folder << "/{path,trajectory,telemetry}.csv, summary.json\n";
+  out << table.str();
+  if (options.video) err << "aerobox: video.mp4 and overview.png are not available yet\n";
+  return finish(
+      flight.status == FlightStatus::kReachedGoal ? "reached goal" : ToString(flight.status),
+      flight.status == FlightStatus::kReachedGoal ? kExitReachedGoal : kExitFlightFailed);
+}
+
+}  // namespace aerobox
