@@ -7,6 +7,7 @@
 
 #include "app/exit_codes.h"
 #include "app/files.h"
+#include "app/flight_benchmark.h"
 #include "app/fly_job.h"
 #include "app/plan_job.h"
 #include "app/planner_comparison.h"
@@ -180,6 +181,13 @@ int RunBench(const std::string& sections, const std::string& scenes, const std::
     CompareMinSnapSolvers(out, err);
     out << "\n";
   }
+  if (wanted("flight")) {
+    const std::string window =
+        (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
+    out << "## Closed loop against bare mj_step on the window scene (medians of 5 repetitions)\n\n";
+    CompareClosedLoop(window, out, err);
+    out << "\n";
+  }
   if (!wanted("planning")) return kExitReachedGoal;
   std::vector<PlanningProblem> problems;
   std::istringstream names(maps);
@@ -250,7 +258,7 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   double bench_seconds = 1.0;
   CLI::App* bench = app.add_subcommand(
       "bench", "performance tables: RRT* against OMPL's (when built with AEROBOX_WITH_OMPL)");
-  bench->add_option("--sections", bench_sections, "all, or some of: trajectory,planning")
+  bench->add_option("--sections", bench_sections, "all, or some of: trajectory,flight,planning")
       ->capture_default_str();
   bench->add_option("--scenes", bench_scenes, "folder with the scenes")->capture_default_str();
   bench->add_option("--maps", bench_maps, "comma-separated scene names")->capture_default_str();

@@ -1,0 +1,13 @@
+// Closed-loop stepping rate (controller + telemetry + MuJoCo) against bare mj_step on the same
+// model, in one run (Google Benchmark, medians of repetitions).
+#pragma once
+
+#include <ostream>
+#include <string>
+
+namespace aerobox {
+
+// `scenario`: the scene to step (its trajectory is flown). Prints a markdown table.
+void CompareClosedLoop(const std::string& scenario, std::ostream& out, std::ostream& progress);
+
+}  // namespace aerobox
