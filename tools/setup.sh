@@ -17,6 +17,8 @@ packages=(
   # src/trajectory: Ipopt (with MUMPS) for the corridor-constrained minimum-snap QP; its
   # pkg-config links -llapack -lblas, whose .so links come only with these -dev packages
   coinor-libipopt-dev liblapack-dev libblas-dev
+  # src/render: OSMesa (CPU OpenGL), libav (H.264 MP4 with libx264), libpng
+  libosmesa6-dev libavcodec-dev libavformat-dev libavutil-dev libswscale-dev libpng-dev
   # src/app: command line, scenario files, aerobox bench
   libcli11-dev libtomlplusplus-dev libbenchmark-dev
   # tests/

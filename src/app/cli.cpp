@@ -277,7 +277,20 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   fly->add_option("--out", out_dir, "output folder (default: renders/<scenario name>/)");
   fly->add_option("--seed", seed, "random seed (default: the scenario's, else 1)")
       ->each([&seed_given](const std::string&) { seed_given = true; });
-  fly->add_flag("--no-video", no_video, "do not render (rendering is not built yet anyway)");
+  fly->add_flag("--no-video", no_video, "do not write video.mp4");
+  FlyOptions fly_options;
+  std::string size = "640x480";
+  fly->add_option("--size", size, "video size WxH, at most 1920x1080")->capture_default_str();
+  fly->add_option("--fps", fly_options.fps, "video frames per second")->capture_default_str();
+  fly->add_option("--speed", fly_options.speed, "playback speed (2: twice as fast)")
+      ->capture_default_str();
+  fly->add_option("--camera", fly_options.camera, "chase, overview, top, or a scene camera")
+      ->capture_default_str();
+  fly->add_option("--quality", fly_options.quality, "fast or pretty")->capture_default_str();
+  bool quiet = false;
+  fly->add_flag("--quiet", quiet, "no progress line");
+  fly->add_option("--frames-every", fly_options.frames_every,
+                  "also write frames/frame_NNNNNN.png every this many seconds of flight");
 
   CLI::App* check = app.add_subcommand(
       "check", "validate a map or scenario and print a summary (exit 2 when it is bad)");
@@ -306,7 +319,15 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     const FlightSetup setup = LoadFlightSetup(input, overrides);
     if (scene->parsed()) return RunScene(setup, output, out);
     if (plan->parsed()) return RunPlan(setup, out_dir, out);
-    if (fly->parsed()) return RunFly(setup, FlyOptions{out_dir, !no_video}, out, err);
+    if (fly->parsed()) {
+      fly_options.out_dir = out_dir;
+      fly_options.video = !no_video;
+      fly_options.progress = !quiet;
+      if (std::sscanf(size.c_str(), "%dx%d", &fly_options.width, &fly_options.height) != 2) {
+        throw InputError({"command line", 0}, "--size", "expected WxH, e.g. 640x480");
+      }
+      return RunFly(setup, fly_options, out, err);
+    }
     return RunCheck(setup, out);
   } catch (const InputError& error) {
     err << "aerobox: error: " << error.what() << "\n";

@@ -9,7 +9,8 @@ enum ExitCode : int {
   kExitBadInput = 2,     // usage, map or scenario errors, unwritable output
   kExitNoPath = 3,
   kExitNoTrajectory = 4,
-  kExitFlightFailed = 5,  // collision, timeout, divergence
+  kExitFlightFailed = 5,   // collision, timeout, divergence
+  kExitInterrupted = 130,  // Ctrl-C (the shell's convention: 128 + SIGINT)
 };
 
 }  // namespace aerobox

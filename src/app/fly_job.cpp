@@ -1,5 +1,8 @@
 #include "app/fly_job.h"
 
+#include <unistd.h>
+
+#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <iomanip>
@@ -10,11 +13,39 @@
 #include "app/plan_job.h"
 #include "common/number_format.h"
 #include "planning/path_simplify.h"
+#include "render/png.h"
+#include "render/renderer.h"
+#include "render/video_encoder.h"
 #include "scene/scene_mjcf.h"
 #include "telemetry/json_object.h"
 
 namespace aerobox {
 namespace fs = std::filesystem;
+namespace {
+
+std::atomic<bool> stop_requested{false};
+
+struct Interrupted : std::runtime_error {
+  Interrupted() : std::runtime_error("interrupted") {}
+};
+
+CameraSpec ParseCamera(const std::string& name) {
+  if (name == "chase") return {CameraKind::kChase, ""};
+  if (name == "overview") return {CameraKind::kOverview, ""};
+  if (name == "top") return {CameraKind::kTop, ""};
+  return {CameraKind::kNamed, name};
+}
+
+std::string Hud(double t, const State& state, const char* status) {
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(1) << "t " << t << " s   speed " << state.v_W.norm()
+       << " m/s   altitude " << state.p_W.z() << " m   " << status;
+  return text.str();
+}
+
+}  // namespace
+
+void RequestStop() { stop_requested = true; }
 
 CsvTable TelemetryTable() {
   return CsvTable({"t",          "x",      "y",      "z",      "vx",       "vy",     "vz",
@@ -82,13 +113,105 @@ int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& ou
   }
   const CollisionWorld world(setup.map, CollisionParams{vehicle.collision_size, 0.0});
   CsvTable telemetry = TelemetryTable();
+
+  // rendering: frames sampled on simulation time, encoded on a worker thread
+  if (options.quality != "fast" && options.quality != "pretty") {
+    throw InputError({"command line", 0}, "--quality", "expected fast or pretty");
+  }
+  if (!(options.fps > 0 && options.fps <= 240) || !(options.speed > 0)) {
+    throw InputError({"command line", 0}, "--fps/--speed", "must be positive (fps at most 240)");
+  }
+  const RenderSettings render_settings{
+      options.width, options.height,
+      options.quality == "pretty" ? Quality::kPretty : Quality::kFast};
+  std::unique_ptr<Renderer> renderer;
+  std::unique_ptr<VideoEncoder> video;
+  const CameraSpec camera = ParseCamera(options.camera);
+  Overlay overlay;
+  overlay.path = plan.result.path;
+  overlay.start = plan.start.used;
+  overlay.goal = plan.goal.used;
+  for (double t = 0; t <= trajectory.trajectory.duration(); t += 0.05) {
+    overlay.trajectory.push_back(trajectory.trajectory.Evaluate(t, kPosition));
+    overlay.speeds.push_back(trajectory.trajectory.Evaluate(t, kVelocity).norm());
+  }
+  try {
+    renderer = std::make_unique<Renderer>(&sim, render_settings);
+  } catch (const std::invalid_argument& e) {
+    throw InputError({"command line", 0}, "--size", e.what());
+  }
+  if (options.video) {
+    try {
+      video = std::make_unique<VideoEncoder>(file("video.mp4"), options.width, options.height,
+                                             options.fps);
+    } catch (const std::runtime_error& e) {
+      throw InputError({file("video.mp4"), 0}, "video", e.what());
+    }
+  }
+  const bool show_progress = options.progress && isatty(STDERR_FILENO);
+  const double frame_step = options.speed / options.fps;  // [s] of simulation per frame
+  const double expected = trajectory.stats.duration;
+  double next_frame = 0.0;
+  int frames = 0;
+  double next_png = 0.0;
+  int png_frames = 0;
+  const std::string frames_folder = file("frames");
+  if (options.frames_every > 0) {
+    std::error_code ec;
+    fs::create_directories(frames_folder, ec);
+    if (ec)
+      throw InputError({frames_folder, 0}, "--frames-every", "cannot create: " + ec.message());
+  }
+  Image image;
   const auto begin = std::chrono::steady_clock::now();
-  const FlightResult flight = FlyTrajectory(
-      ReferenceOf(trajectory.trajectory), FlightParams(), vehicle,
-      [&world](const Vec3& p) { return world.Clearance(p); },
-      [&telemetry](const TelemetrySample& s) { AddTelemetryRow(s, &telemetry); }, &sim);
+  const auto on_sample = [&](const TelemetrySample& s) {
+    if (stop_requested) throw Interrupted();
+    AddTelemetryRow(s, &telemetry);
+    if (overlay.trail.empty() || (overlay.trail.back() - s.state.p_W).norm() > 0.02) {
+      overlay.trail.push_back(s.state.p_W);
+    }
+    const bool png_due = options.frames_every > 0 && s.t + 1e-9 >= next_png;
+    const bool video_due = video && s.t + 1e-9 >= next_frame;
+    if (!png_due && !video_due) return;
+    overlay.text = Hud(s.t, s.state, "flying");
+    renderer->Render(camera, overlay, &image);
+    if (png_due) {
+      char name[32];
+      std::snprintf(name, sizeof(name), "frame_%06d.png", png_frames++);
+      WriteFileAtomically((fs::path(frames_folder) / name).string(), EncodePng(image));
+      next_png += options.frames_every;
+    }
+    if (!video_due) return;
+    next_frame += frame_step;
+    video->AddFrame(image);
+    ++frames;
+    if (show_progress && frames % 10 == 0) {
+      const double wall =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+      err << "\rframe " << frames << "  " << std::fixed << std::setprecision(0)
+          << frames / std::max(wall, 1e-9) << " fps  " << std::setprecision(1) << s.t << " / "
+          << expected << " s   " << std::flush;
+    }
+  };
+  FlightResult flight;
+  try {
+    flight = FlyTrajectory(
+        ReferenceOf(trajectory.trajectory), FlightParams(), vehicle,
+        [&world](const Vec3& p) { return world.Clearance(p); }, on_sample, &sim);
+  } catch (const Interrupted&) {
+    if (show_progress) err << "\n";
+    err << "aerobox: interrupted: no video, telemetry or summary written\n";
+    return kExitInterrupted;  // the encoder's destructor removes its temporary file
+  }
+  if (show_progress) err << "\r" << std::string(60, ' ') << "\r" << std::flush;
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  if (video) video->Finish();
+
+  // overview.png: the map, the path, the trajectory and the flown trail in one picture
+  overlay.text = Hud(flight.time, sim.VehicleState(), ToString(flight.status));
+  renderer->Render({CameraKind::kOverview, ""}, overlay, &image);
+  WriteFileAtomically(file("overview.png"), EncodePng(image));
   WriteFileAtomically(file("telemetry.csv"), telemetry.Text());
 
   summary.Add("flight_status", ToString(flight.status))
@@ -100,7 +223,8 @@ int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& ou
       .Add("collisions", flight.status == FlightStatus::kCollision ? 1 : 0)
       .Add("collision_with", flight.obstacle)
       .Add("telemetry_rate_hz", 1.0 / (sim.timestep() * FlightParams().cascade.outer_divider))
-      .Add("video", options.video ? "not available: rendering is not built yet" : "off");
+      .Add("video_frames", frames)
+      .Add("video_fps", options.fps);
 
   std::ostringstream table;
   table << std::fixed << std::setprecision(3);
@@ -119,9 +243,10 @@ int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& ou
   } else {
     table << "none (no obstacles)\n";
   }
-  table << "  files       " << folder << "/{path,trajectory,telemetry}.csv, summary.json\n";
+  table << "  files       " << folder
+        << "/{path,trajectory,telemetry}.csv, summary.json, overview.png"
+        << (video ? ", video.mp4 (" + std::to_string(frames) + " frames)" : std::string()) << "\n";
   out << table.str();
-  if (options.video) err << "aerobox: video.mp4 and overview.png are not available yet\n";
   return finish(
       flight.status == FlightStatus::kReachedGoal ? "reached goal" : ToString(flight.status),
       flight.status == FlightStatus::kReachedGoal ? kExitReachedGoal : kExitFlightFailed);

@@ -13,7 +13,19 @@ namespace aerobox {
 struct FlyOptions {
   std::string out_dir;  // "" : renders/<scenario name>/
   bool video = true;
+  int width = 640;  // [pixels]
+  int height = 480;
+  int fps = 30;                  // frames per second of video
+  double speed = 1.0;            // playback speed: 2 shows the flight twice as fast
+  std::string camera = "chase";  // chase, overview, top, or a camera named in the scene
+  std::string quality = "fast";  // fast or pretty
+  bool progress = true;          // a progress line on standard error when it is a terminal
+  double frames_every = 0.0;     // [s] of simulation between PNG frames in frames/ (0: none)
 };
+
+// Set from a SIGINT handler: the run stops at the next control step, and every output is then
+// complete or absent.
+void RequestStop();
 
 // Runs the whole job and returns the exit code (app/exit_codes.h). Throws InputError for bad
 // input, before anything is written.

@@ -64,6 +64,10 @@ class Simulation {
   double timestep() const { return model_->opt.timestep; }
   const mjModel* model() const { return model_.get(); }
   const mjData* data() const { return data_.get(); }
+  // For renderers only: MuJoCo's visual API takes non-const pointers (mjv_updateScene), and the
+  // off-screen settings live in the model. Nothing may change the physics through these.
+  mjModel* mutable_model() { return model_.get(); }
+  mjData* mutable_data() { return data_.get(); }
 
  private:
   Simulation(MjModelPtr model, const std::string& source);

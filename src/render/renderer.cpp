@@ -1,0 +1,203 @@
+#include "render/renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include "render/offscreen_context.h"
+#include "vehicle/model_names.h"
+
+namespace aerobox {
+namespace {
+
+constexpr int kOverlayGeoms = 6000;       // room in the scene for overlay geoms
+constexpr int kMaxPolylinePoints = 1500;  // longer polylines are subsampled
+
+// Every n-th point so that at most kMaxPolylinePoints remain (the last one always).
+std::vector<size_t> Subsample(size_t count) {
+  std::vector<size_t> kept;
+  const size_t step = std::max<size_t>(1, (count + kMaxPolylinePoints - 1) / kMaxPolylinePoints);
+  for (size_t i = 0; i < count; i += step) kept.push_back(i);
+  if (count > 0 && kept.back() != count - 1) kept.push_back(count - 1);
+  return kept;
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+  Simulation* sim = nullptr;
+  RenderSettings settings;
+  std::unique_ptr<OffscreenContext> context;
+  mjvScene scene;
+  mjrContext gl;
+  mjvOption option;
+  std::vector<unsigned char> buffer;
+  // the chase camera's filtered state
+  bool chase_started = false;
+  Vec3 chase_lookat = Vec3::Zero();
+  double chase_azimuth = 0.0;  // [deg]
+  double chase_time = 0.0;     // simulation time of the last chase frame [s]
+
+  void AddLine(const Vec3& a, const Vec3& b, const float rgba[4], double width) {
+    if (scene.ngeom >= scene.maxgeom) return;
+    mjvGeom* geom = scene.geoms + scene.ngeom;
+    mjv_initGeom(geom, mjGEOM_NONE, nullptr, nullptr, nullptr, rgba);
+    mjv_makeConnector(geom, mjGEOM_LINE, width, a.x(), a.y(), a.z(), b.x(), b.y(), b.z());
+    geom->category = mjCAT_DECOR;
+    ++scene.ngeom;
+  }
+
+  void AddSphere(const Vec3& p, double radius, const float rgba[4]) {
+    if (scene.ngeom >= scene.maxgeom) return;
+    const mjtNum size[3] = {radius, radius, radius};
+    const mjtNum pos[3] = {p.x(), p.y(), p.z()};
+    mjv_initGeom(scene.geoms + scene.ngeom, mjGEOM_SPHERE, size, pos, nullptr, rgba);
+    scene.geoms[scene.ngeom].category = mjCAT_DECOR;
+    ++scene.ngeom;
+  }
+
+  void AddPolyline(const std::vector<Vec3>& points, const float rgba[4], double width) {
+    const std::vector<size_t> kept = Subsample(points.size());
+    for (size_t i = 1; i < kept.size(); ++i)
+      AddLine(points[kept[i - 1]], points[kept[i]], rgba, width);
+  }
+
+  void AddOverlay(const Overlay& overlay) {
+    const double scale = std::max(0.05, 0.01 * sim->model()->stat.extent);  // marker size [m]
+    static const float kPath[4] = {0.95f, 0.75f, 0.1f, 1.0f};
+    static const float kTrail[4] = {0.1f, 0.1f, 0.1f, 1.0f};
+    static const float kStart[4] = {0.1f, 0.8f, 0.2f, 0.9f};
+    static const float kGoal[4] = {0.9f, 0.15f, 0.1f, 0.9f};
+    AddPolyline(overlay.path, kPath, 2.0);
+    const std::vector<size_t> kept = Subsample(overlay.trajectory.size());
+    double top = 1e-9;
+    for (const double v : overlay.speeds) top = std::max(top, v);
+    for (size_t i = 1; i < kept.size(); ++i) {
+      const double v = kept[i] < overlay.speeds.size() ? overlay.speeds[kept[i]] / top : 0.0;
+      const float rgba[4] = {static_cast<float>(v), 0.2f, static_cast<float>(1.0 - v), 1.0f};
+      AddLine(overlay.trajectory[kept[i - 1]], overlay.trajectory[kept[i]], rgba, 3.0);
+    }
+    AddPolyline(overlay.trail, kTrail, 2.0);
+    if (overlay.start) AddSphere(*overlay.start, scale, kStart);
+    if (overlay.goal) AddSphere(*overlay.goal, scale, kGoal);
+  }
+
+  mjvCamera Camera(const CameraSpec& spec) {
+    const mjModel* m = sim->model();
+    mjvCamera camera;
+    mjv_defaultCamera(&camera);
+    const auto fixed = [&](const char* name) {
+      const int id = mj_name2id(m, mjOBJ_CAMERA, name);
+      if (id < 0)
+        throw std::invalid_argument(std::string("the scene has no camera '") + name + "'");
+      camera.type = mjCAMERA_FIXED;
+      camera.fixedcamid = id;
+    };
+    switch (spec.kind) {
+      case CameraKind::kOverview:
+        fixed(model_names::kOverviewCamera);
+        break;
+      case CameraKind::kNamed:
+        fixed(spec.name.c_str());
+        break;
+      case CameraKind::kTop:
+        camera.type = mjCAMERA_FREE;
+        for (int k = 0; k < 3; ++k) camera.lookat[k] = m->stat.center[k];
+        camera.elevation = -89.9;
+        camera.azimuth = 90.0;
+        camera.distance = 2.4 * m->stat.extent;
+        break;
+      case CameraKind::kChase: {
+        // behind the direction of travel, above, following smoothly
+        const State state = sim->VehicleState();
+        const Vec3 v = state.v_W;
+        double heading = chase_azimuth;
+        if (v.head<2>().norm() > 0.3) heading = std::atan2(v.y(), v.x()) * 180.0 / M_PI;
+        const double now = sim->time();
+        if (!chase_started || now < chase_time) {
+          chase_lookat = state.p_W;
+          chase_azimuth = heading;
+          chase_started = true;
+        }
+        // first-order filters on simulation time (0.15 s for the position, 0.8 s for the
+        // heading), so the camera moves the same at any frame rate
+        const double dt = now - chase_time;
+        chase_time = now;
+        const double follow = 1.0 - std::exp(-dt / 0.15);
+        const double turn = 1.0 - std::exp(-dt / 0.8);
+        chase_azimuth += turn * std::remainder(heading - chase_azimuth, 360.0);
+        chase_lookat += follow * (state.p_W - chase_lookat);
+        camera.type = mjCAMERA_FREE;
+        for (int k = 0; k < 3; ++k) camera.lookat[k] = chase_lookat[k];
+        camera.azimuth = chase_azimuth;
+        camera.elevation = -22.0;
+        camera.distance = 1.4;
+        break;
+      }
+    }
+    return camera;
+  }
+};
+
+Renderer::Renderer(Simulation* sim, const RenderSettings& settings)
+    : impl_(std::make_unique<Impl>()) {
+  mjModel* m = sim->mutable_model();
+  const int buffer_width = m->vis.global.offwidth;
+  const int buffer_height = m->vis.global.offheight;
+  if (settings.width < 16 || settings.height < 16 || settings.width > buffer_width ||
+      settings.height > buffer_height) {
+    throw std::invalid_argument(
+        "render size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
+        " does not fit the scene's off-screen buffer " + std::to_string(buffer_width) + "x" +
+        std::to_string(buffer_height) + " (minimum 16x16)");
+  }
+  impl_->sim = sim;
+  impl_->settings = settings;
+  impl_->context = std::make_unique<OffscreenContext>(settings.width, settings.height);
+  // multisampling is read from the model when the GL context is made
+  m->vis.quality.offsamples = settings.quality == Quality::kPretty ? 4 : 0;
+  mjv_defaultScene(&impl_->scene);
+  mjv_defaultOption(&impl_->option);
+  mjr_defaultContext(&impl_->gl);
+  mjv_makeScene(m, &impl_->scene, m->ngeom + kOverlayGeoms);
+  mjr_makeContext(m, &impl_->gl, mjFONTSCALE_150);
+  mjr_setBuffer(mjFB_OFFSCREEN, &impl_->gl);
+  const bool pretty = settings.quality == Quality::kPretty;
+  impl_->scene.flags[mjRND_SHADOW] = pretty;
+  impl_->scene.flags[mjRND_REFLECTION] = pretty;
+  impl_->buffer.resize(static_cast<size_t>(settings.width) * settings.height * 3);
+}
+
+Renderer::~Renderer() {
+  mjr_freeContext(&impl_->gl);
+  mjv_freeScene(&impl_->scene);
+}
+
+int Renderer::width() const { return impl_->settings.width; }
+int Renderer::height() const { return impl_->settings.height; }
+
+void Renderer::Render(const CameraSpec& spec, const Overlay& overlay, Image* out) {
+  Impl& r = *impl_;
+  r.context->MakeCurrent();
+  mjvCamera camera = r.Camera(spec);
+  mjv_updateScene(r.sim->model(), r.sim->mutable_data(), &r.option, nullptr, &camera, mjCAT_ALL,
+                  &r.scene);
+  r.AddOverlay(overlay);
+  const mjrRect viewport = {0, 0, r.settings.width, r.settings.height};
+  mjr_render(viewport, &r.scene, &r.gl);
+  if (!overlay.text.empty()) {
+    mjr_overlay(mjFONT_NORMAL, mjGRID_TOPLEFT, viewport, overlay.text.c_str(), nullptr, &r.gl);
+  }
+  mjr_readPixels(r.buffer.data(), nullptr, viewport, &r.gl);
+  // MuJoCo reads rows bottom-up; images are top-down
+  out->width = r.settings.width;
+  out->height = r.settings.height;
+  out->rgb.resize(r.buffer.size());
+  const size_t row = static_cast<size_t>(r.settings.width) * 3;
+  for (int y = 0; y < r.settings.height; ++y) {
+    std::memcpy(&out->rgb[y * row], &r.buffer[(r.settings.height - 1 - y) * row], row);
+  }
+}
+
+}  // namespace aerobox

@@ -1,0 +1,67 @@
+// Off-screen rendering of a simulation with MuJoCo's mjv_/mjr_ API on OSMesa: cameras (chase,
+// overview, top, or one named in the scene), overlays drawn into the scene (path, trajectory
+// coloured by speed, flown trail, start and goal, a text line), RGB images top-down.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/types.h"
+#include "render/image.h"
+#include "sim/simulation.h"
+
+namespace aerobox {
+
+enum class Quality {
+  kFast,    // no shadows, reflections or multisampling
+  kPretty,  // shadows, reflections, 4x multisampling
+};
+
+enum class CameraKind { kChase, kOverview, kTop, kNamed };
+
+struct CameraSpec {
+  CameraKind kind = CameraKind::kChase;
+  std::string name;  // for kNamed: a camera of the scene
+};
+
+struct RenderSettings {
+  int width = 640;  // [pixels], at most the scene's off-screen buffer
+  int height = 480;
+  Quality quality = Quality::kFast;
+};
+
+struct Overlay {
+  std::vector<Vec3> path;        // the planner's polyline [m]
+  std::vector<Vec3> trajectory;  // samples of the trajectory [m] ...
+  std::vector<double> speeds;    // ... and the speed at each [m/s] (colour: blue slow, red fast)
+  std::vector<Vec3> trail;       // where the vehicle has been [m]
+  std::optional<Vec3> start;
+  std::optional<Vec3> goal;
+  std::string text;  // top-left text, lines separated by '\n'
+};
+
+class Renderer {
+ public:
+  // Throws std::invalid_argument when the size exceeds the scene's off-screen buffer
+  // (<visual><global offwidth offheight>): MuJoCo would clip the picture without a word.
+  Renderer(Simulation* sim, const RenderSettings& settings);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Renders the simulation's current state. The chase camera follows the vehicle smoothly
+  // (its position and heading are filtered from frame to frame). Throws std::invalid_argument
+  // for a named camera the scene does not have.
+  void Render(const CameraSpec& camera, const Overlay& overlay, Image* out);
+
+  int width() const;
+  int height() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace aerobox

@@ -1,0 +1,155 @@
+#include <doctest/doctest.h>
+
+extern "C" {
+#include <libavformat/avformat.h>
+}
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "render/png.h"
+#include "render/renderer.h"
+#include "render/video_encoder.h"
+#include "scene/scene_mjcf.h"
+#include "test_support.h"
+#include "vehicle/model_names.h"
+
+namespace aerobox {
+namespace {
+
+Simulation SmallScene(const Vec3& vehicle) {
+  Map map;
+  map.name = "small";
+  map.bounds = {Vec3(0, 0, 0), Vec3(4, 4, 2)};
+  map.boxes.push_back({{Vec3(2.5, 2.5, 0), Vec3(3, 3, 1.5)}, Vec3(0.8, 0.1, 0.1), "block_0", 1});
+  SceneOptions options;
+  options.vehicle_position = vehicle;
+  return Simulation::FromXml(BuildSceneMjcf(map, QuadParams(), options), "small");
+}
+
+// Where the camera sees a world point: pixel column and row (top-down), from the camera's pose
+// in mjData and its vertical field of view.
+Eigen::Vector2d Project(const Simulation& sim, const char* camera, const Vec3& p, int w, int h) {
+  const int id = mj_name2id(sim.model(), mjOBJ_CAMERA, camera);
+  const Vec3 eye(sim.data()->cam_xpos + 3 * id);
+  Mat3 r;  // columns: camera x (right), y (up), z (backwards)
+  for (int i = 0; i < 9; ++i) r(i / 3, i % 3) = sim.data()->cam_xmat[9 * id + i];
+  const Vec3 c = r.transpose() * (p - eye);
+  const double f = 0.5 * h / std::tan(0.5 * sim.model()->cam_fovy[id] * M_PI / 180.0);
+  return {0.5 * w + f * c.x() / -c.z(), 0.5 * h - f * c.y() / -c.z()};
+}
+
+}  // namespace
+
+TEST_CASE("a rendered frame is not blank and shows the vehicle where the camera projects it") {
+  Simulation sim = SmallScene(Vec3(1, 1, 1));
+  Renderer renderer(&sim, RenderSettings{320, 240, Quality::kFast});
+  Image with;
+  renderer.Render(CameraSpec{CameraKind::kOverview, ""}, Overlay(), &with);
+  REQUIRE(with.width == 320);
+  REQUIRE(with.rgb.size() == 320u * 240u * 3u);
+  // not blank: the pixels differ a lot
+  int low = 255, high = 0;
+  for (const uint8_t v : with.rgb) {
+    low = std::min<int>(low, v);
+    high = std::max<int>(high, v);
+  }
+  CHECK(high - low > 100);
+
+  // the same view with the vehicle moved out of sight: pixels change near its projection only
+  sim.SetVehicleState(State{Vec3(1, 1, -50), Vec3::Zero(), Quat::Identity(), Vec3::Zero()});
+  Image without;
+  renderer.Render(CameraSpec{CameraKind::kOverview, ""}, Overlay(), &without);
+  const Eigen::Vector2d at = Project(sim, model_names::kOverviewCamera, Vec3(1, 1, 1), 320, 240);
+  long near = 0, far = 0;
+  for (int y = 0; y < 240; ++y) {
+    for (int x = 0; x < 320; ++x) {
+      int difference = 0;
+      for (int k = 0; k < 3; ++k)
+        difference += std::abs(with.Pixel(x, y)[k] - without.Pixel(x, y)[k]);
+      if (difference < 30) continue;
+      (std::hypot(x - at.x(), y - at.y()) < 12 ? near : far) += 1;
+    }
+  }
+  CHECK(near >= 3);    // the vehicle is a few pixels wide at this distance
+  CHECK(far <= near);  // and its shadow-free absence changes little else
+}
+
+TEST_CASE("a size above the scene's off-screen buffer fails with a clear message") {
+  Simulation sim = SmallScene(Vec3(1, 1, 1));
+  CHECK_THROWS_WITH_AS(Renderer(&sim, RenderSettings{2560, 1440, Quality::kFast}),
+                       doctest::Contains("does not fit the scene's off-screen buffer 1920x1080"),
+                       std::invalid_argument);
+}
+
+TEST_CASE("a PNG reads back with the same pixels") {
+  Simulation sim = SmallScene(Vec3(1, 1, 1));
+  Renderer renderer(&sim, RenderSettings{160, 120, Quality::kPretty});
+  Image frame;
+  renderer.Render(CameraSpec{CameraKind::kChase, ""}, Overlay(), &frame);
+  Image back;
+  REQUIRE(DecodePng(EncodePng(frame), &back));
+  CHECK(back.width == frame.width);
+  CHECK(back.height == frame.height);
+  CHECK(back.rgb == frame.rgb);
+  CHECK_FALSE(DecodePng("not a png", &back));
+}
+
+TEST_CASE("an MP4 reads back as H.264 with its size and duration x fps frames") {
+  const testing::TempDir dir;
+  const std::string path = (dir.path() / "clip.mp4").string();
+  Simulation sim = SmallScene(Vec3(1, 1, 1));
+  Renderer renderer(&sim, RenderSettings{320, 240, Quality::kFast});
+  const int fps = 25;
+  const int frames = 50;  // 2 s
+  {
+    VideoEncoder video(path, 320, 240, fps);
+    Image frame;
+    for (int i = 0; i < frames; ++i) {
+      sim.SetVehicleState(
+          State{Vec3(1 + 0.02 * i, 1, 1), Vec3::Zero(), Quat::Identity(), Vec3::Zero()});
+      renderer.Render(CameraSpec{CameraKind::kOverview, ""}, Overlay(), &frame);
+      video.AddFrame(frame);
+    }
+    video.Finish();
+    CHECK(video.frames_written() == frames);
+  }
+  CHECK_FALSE(std::filesystem::exists(path + ".partial"));
+  AVFormatContext* format = nullptr;
+  REQUIRE(avformat_open_input(&format, path.c_str(), nullptr, nullptr) == 0);
+  REQUIRE(avformat_find_stream_info(format, nullptr) >= 0);
+  REQUIRE(format->nb_streams == 1);
+  const AVCodecParameters* codec = format->streams[0]->codecpar;
+  CHECK(codec->codec_id == AV_CODEC_ID_H264);
+  CHECK(codec->width == 320);
+  CHECK(codec->height == 240);
+  CHECK(codec->format == AV_PIX_FMT_YUV420P);
+  // count the packets (frames) and check the duration
+  AVPacket* packet = av_packet_alloc();
+  int count = 0;
+  while (av_read_frame(format, packet) >= 0) {
+    ++count;
+    av_packet_unref(packet);
+  }
+  av_packet_free(&packet);
+  const double seconds = static_cast<double>(format->duration) / AV_TIME_BASE;
+  avformat_close_input(&format);
+  CHECK(std::abs(count - frames) <= 1);
+  CHECK(seconds == doctest::Approx(2.0).epsilon(0.05));
+}
+
+TEST_CASE("an unfinished video leaves no file") {
+  const testing::TempDir dir;
+  const std::string path = (dir.path() / "cut.mp4").string();
+  {
+    VideoEncoder video(path, 64, 48, 10);
+    Image frame{64, 48, std::vector<uint8_t>(64 * 48 * 3, 128)};
+    video.AddFrame(frame);
+  }  // destroyed without Finish(): as when a run is interrupted
+  CHECK_FALSE(std::filesystem::exists(path));
+  CHECK_FALSE(std::filesystem::exists(path + ".partial"));
+  CHECK_THROWS_AS(VideoEncoder(path, 65, 48, 10), std::runtime_error);  // odd width
+}
+
+}  // namespace aerobox
