@@ -11,6 +11,7 @@
 #include "app/fly_job.h"
 #include "app/plan_job.h"
 #include "app/planner_comparison.h"
+#include "app/render_benchmark.h"
 #include "app/scenario.h"
 #include "app/solver_comparison.h"
 #include "common/error.h"
@@ -181,6 +182,14 @@ int RunBench(const std::string& sections, const std::string& scenes, const std::
     CompareMinSnapSolvers(out, err);
     out << "\n";
   }
+  if (wanted("render")) {
+    const std::string window =
+        (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
+    out << "## The video path against bare rendering on the window scene (60 frames, medians of "
+           "3)\n\n";
+    CompareVideoPath(window, out, err);
+    out << "\n";
+  }
   if (wanted("flight")) {
     const std::string window =
         (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
@@ -258,7 +267,9 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   double bench_seconds = 1.0;
   CLI::App* bench = app.add_subcommand(
       "bench", "performance tables: RRT* against OMPL's (when built with AEROBOX_WITH_OMPL)");
-  bench->add_option("--sections", bench_sections, "all, or some of: trajectory,flight,planning")
+  bench
+      ->add_option("--sections", bench_sections,
+                   "all, or some of: trajectory,flight,render,planning")
       ->capture_default_str();
   bench->add_option("--scenes", bench_scenes, "folder with the scenes")->capture_default_str();
   bench->add_option("--maps", bench_maps, "comma-separated scene names")->capture_default_str();
