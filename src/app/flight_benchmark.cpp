@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <map>
 
+#include "app/benchmark_medians.h"
 #include "app/flight.h"
 #include "app/fly_job.h"
 #include "app/plan_job.h"
@@ -13,18 +14,6 @@ namespace aerobox {
 namespace {
 
 constexpr int kStepsPerIteration = 2000;  // 2 s of flight at 1 ms
-
-class Collector : public benchmark::BenchmarkReporter {
- public:
-  bool ReportContext(const Context&) override { return true; }
-  void ReportRuns(const std::vector<Run>& runs) override {
-    for (const Run& run : runs) {
-      if (run.aggregate_name == "median")
-        seconds[run.run_name.function_name] = run.GetAdjustedRealTime();
-    }
-  }
-  std::map<std::string, double> seconds;  // per iteration
-};
 
 }  // namespace
 
@@ -86,13 +75,11 @@ void CompareClosedLoop(const std::string& scenario, std::ostream& out, std::ostr
       ->ReportAggregatesOnly(true);
 
   progress << "timing the closed loop ..." << std::flush;
-  Collector collector;
-  benchmark::RunSpecifiedBenchmarks(&collector);
-  benchmark::ClearRegisteredBenchmarks();
+  const std::map<std::string, double> medians = RunRegisteredBenchmarks();
   progress << "\r" << std::string(40, ' ') << "\r" << std::flush;
 
-  const double bare = kStepsPerIteration / collector.seconds["bare"];
-  const double closed = kStepsPerIteration / collector.seconds["closed"];
+  const double bare = kStepsPerIteration / medians.at("bare");
+  const double closed = kStepsPerIteration / medians.at("closed");
   out << std::fixed << std::setprecision(0) << "| loop | steps/s |\n|---|---|\n"
       << "| bare mj_step | " << bare << " |\n| closed loop (cascade, contacts, clearance, "
       << "telemetry) | " << closed << " |\n\n"

@@ -8,6 +8,7 @@
 #include <iomanip>
 #include <map>
 
+#include "app/benchmark_medians.h"
 #include "app/scenario.h"
 #include "render/renderer.h"
 #include "render/video_encoder.h"
@@ -16,18 +17,6 @@ namespace aerobox {
 namespace {
 
 constexpr int kFrames = 60;
-
-class Collector : public benchmark::BenchmarkReporter {
- public:
-  bool ReportContext(const Context&) override { return true; }
-  void ReportRuns(const std::vector<Run>& runs) override {
-    for (const Run& run : runs) {
-      if (run.aggregate_name == "median")
-        seconds[run.run_name.function_name] = run.GetAdjustedRealTime();
-    }
-  }
-  std::map<std::string, double> seconds;
-};
 
 }  // namespace
 
@@ -83,9 +72,7 @@ void CompareVideoPath(const std::string& scenario, std::ostream& out, std::ostre
         ->ReportAggregatesOnly(true);
   }
   progress << "timing the video path ..." << std::flush;
-  Collector collector;
-  benchmark::RunSpecifiedBenchmarks(&collector);
-  benchmark::ClearRegisteredBenchmarks();
+  const std::map<std::string, double> medians = RunRegisteredBenchmarks();
   std::remove(video.c_str());
   progress << "\r" << std::string(40, ' ') << "\r" << std::flush;
 
@@ -93,8 +80,8 @@ void CompareVideoPath(const std::string& scenario, std::ostream& out, std::ostre
       << "|---|---|---|---|\n"
       << std::fixed;
   for (const Case& c : cases) {
-    const double bare = kFrames / collector.seconds[std::string("bare/") + c.name];
-    const double full = kFrames / collector.seconds[std::string("video/") + c.name];
+    const double bare = kFrames / medians.at(std::string("bare/") + c.name);
+    const double full = kFrames / medians.at(std::string("video/") + c.name);
     out << "| " << c.name << " | " << std::setprecision(1) << bare << " | " << full << " | "
         << std::setprecision(2) << full / bare << " |\n";
   }

@@ -6,6 +6,7 @@
 #include <map>
 #include <random>
 
+#include "app/benchmark_medians.h"
 #include "trajectory/min_snap.h"
 #include "trajectory/time_allocation.h"
 
@@ -40,17 +41,6 @@ MinSnapProblem RandomProblem(int segments, bool corridors) {
 }
 
 // Collects the median real time [ms] of every benchmark, by name.
-class Collector : public benchmark::BenchmarkReporter {
- public:
-  bool ReportContext(const Context&) override { return true; }
-  void ReportRuns(const std::vector<Run>& runs) override {
-    for (const Run& run : runs) {
-      if (run.aggregate_name == "median")
-        medians[run.run_name.function_name] = run.GetAdjustedRealTime();
-    }
-  }
-  std::map<std::string, double> medians;
-};
 
 }  // namespace
 
@@ -77,9 +67,7 @@ void CompareMinSnapSolvers(std::ostream& out, std::ostream& progress) {
     add("corridors/" + std::to_string(n), [boxed] { return SolveMinSnapIpopt(boxed); });
   }
   progress << "timing min-snap solvers ..." << std::flush;
-  Collector collector;
-  benchmark::RunSpecifiedBenchmarks(&collector);
-  benchmark::ClearRegisteredBenchmarks();
+  const std::map<std::string, double> medians = RunRegisteredBenchmarks();
   progress << "\r" << std::string(40, ' ') << "\r" << std::flush;
 
   out << "| segments | closed form [ms] | Ipopt, equalities [ms] | ratio | Ipopt, corridors [ms] "
@@ -87,9 +75,9 @@ void CompareMinSnapSolvers(std::ostream& out, std::ostream& progress) {
       << std::fixed;
   for (const int n : sizes) {
     const std::string key = std::to_string(n);
-    const double closed = collector.medians["closed/" + key];
-    const double ipopt = collector.medians["ipopt/" + key];
-    const double boxed = collector.medians["corridors/" + key];
+    const double closed = medians.at("closed/" + key);
+    const double ipopt = medians.at("ipopt/" + key);
+    const double boxed = medians.at("corridors/" + key);
     out << "| " << n << " | " << std::setprecision(3) << closed << " | " << ipopt << " | "
         << std::setprecision(2) << ipopt / closed << " | " << std::setprecision(3) << boxed
         << (infeasible.count(n) ? " (" + infeasible[n] + ")" : std::string()) << " | "
