@@ -1,10 +1,12 @@
 #include "app/files.h"
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <system_error>
 
 #include "common/error.h"
@@ -46,6 +48,45 @@ void WriteFileAtomically(const std::string& path, const std::string& text) {
     std::error_code ignored;
     fs::remove(temporary, ignored);
     throw InputError({path, 0}, "", "cannot write: " + ec.message());
+  }
+}
+
+StreamingFile::StreamingFile(std::string path)
+    : path_(std::move(path)), partial_(path_ + ".partial") {
+  file_ = std::fopen(partial_.c_str(), "wb");
+  if (file_ == nullptr) {
+    throw InputError({path_, 0}, "", std::string("cannot write: ") + std::strerror(errno));
+  }
+}
+
+StreamingFile::~StreamingFile() {
+  if (file_ != nullptr) {
+    std::fclose(file_);
+    std::remove(partial_.c_str());
+  }
+}
+
+void StreamingFile::Append(const std::string& text) {
+  if (file_ == nullptr) throw std::logic_error("StreamingFile: append after commit");
+  if (std::fwrite(text.data(), 1, text.size(), file_) != text.size()) {
+    throw InputError({path_, 0}, "", "writing failed (disk full?)");
+  }
+}
+
+void StreamingFile::Commit() {
+  if (file_ == nullptr) throw std::logic_error("StreamingFile: committed twice");
+  const bool flushed = std::fflush(file_) == 0;
+  const bool closed = std::fclose(file_) == 0;
+  file_ = nullptr;
+  if (!flushed || !closed) {
+    std::remove(partial_.c_str());
+    throw InputError({path_, 0}, "", "writing failed (disk full?)");
+  }
+  std::error_code ec;
+  fs::rename(partial_, path_, ec);
+  if (ec) {
+    std::remove(partial_.c_str());
+    throw InputError({path_, 0}, "", "cannot write: " + ec.message());
   }
 }
 

@@ -112,7 +112,12 @@ int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& ou
     sim.SetRotorThrusts(Vec4::Constant(vehicle.HoverThrustPerRotor()));
   }
   const CollisionWorld world(setup.map, CollisionParams{vehicle.collision_size, 0.0});
+  // telemetry is streamed to telemetry.csv.partial as the vehicle flies, in blocks of rows, and
+  // renamed when the flight is over
+  StreamingFile telemetry_file(file("telemetry.csv"));
   CsvTable telemetry = TelemetryTable();
+  const size_t header_length = telemetry.Text().size();
+  telemetry_file.Append(telemetry.Text());  // the header; blocks of rows follow
 
   // rendering: frames sampled on simulation time, encoded on a worker thread
   if (options.quality != "fast" && options.quality != "pretty") {
@@ -167,6 +172,10 @@ int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& ou
   const auto on_sample = [&](const TelemetrySample& s) {
     if (stop_requested) throw Interrupted();
     AddTelemetryRow(s, &telemetry);
+    if (telemetry.rows() >= 1000) {  // 4 s of flight a block
+      telemetry_file.Append(telemetry.Text().substr(header_length));
+      telemetry = TelemetryTable();
+    }
     if (overlay.trail.empty() || (overlay.trail.back() - s.state.p_W).norm() > 0.02) {
       overlay.trail.push_back(s.state.p_W);
     }
@@ -188,9 +197,11 @@ int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& ou
     if (show_progress && frames % 10 == 0) {
       const double wall =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+      const double left = wall * std::max(0.0, expected - s.t) / std::max(s.t, 1e-9);
       err << "\rframe " << frames << "  " << std::fixed << std::setprecision(0)
-          << frames / std::max(wall, 1e-9) << " fps  " << std::setprecision(1) << s.t << " / "
-          << expected << " s   " << std::flush;
+          << frames / std::max(wall, 1e-9) << " fps  flight " << std::setprecision(1) << s.t
+          << " / " << expected << " s  about " << std::setprecision(0) << left << " s left   "
+          << std::flush;
     }
   };
   FlightResult flight;
@@ -212,7 +223,8 @@ int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& ou
   overlay.text = Hud(flight.time, sim.VehicleState(), ToString(flight.status));
   renderer->Render({CameraKind::kOverview, ""}, overlay, &image);
   WriteFileAtomically(file("overview.png"), EncodePng(image));
-  WriteFileAtomically(file("telemetry.csv"), telemetry.Text());
+  telemetry_file.Append(telemetry.Text().substr(header_length));
+  telemetry_file.Commit();
 
   summary.Add("flight_status", ToString(flight.status))
       .Add("flight_time_s", flight.time)

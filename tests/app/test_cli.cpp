@@ -6,6 +6,7 @@
 
 #include "app/cli.h"
 #include "app/exit_codes.h"
+#include "common/error.h"
 #include "sim/simulation.h"
 #include "test_support.h"
 
@@ -199,6 +200,33 @@ TEST_CASE("fly: plans, flies and writes path, trajectory, telemetry and summary"
     CHECK(testing::ReadFile(std::filesystem::path(out) / name) ==
           testing::ReadFile(std::filesystem::path(again) / name));
   }
+}
+
+}  // namespace aerobox
+
+#include "app/files.h"
+
+namespace aerobox {
+
+TEST_CASE("a streamed file appears only when committed") {
+  const testing::TempDir dir;
+  const std::string path = (dir.path() / "telemetry.csv").string();
+  {
+    StreamingFile file(path);
+    file.Append("t,x\n");
+    file.Append("0,1\n");
+    CHECK_FALSE(std::filesystem::exists(path));
+    file.Commit();
+  }
+  CHECK(testing::ReadFile(path) == "t,x\n0,1\n");
+  const std::string cut = (dir.path() / "cut.csv").string();
+  {
+    StreamingFile file(cut);
+    file.Append("t,x\n");
+  }  // a failure or Ctrl-C: no commit
+  CHECK_FALSE(std::filesystem::exists(cut));
+  CHECK_FALSE(std::filesystem::exists(cut + ".partial"));
+  CHECK_THROWS_AS(StreamingFile((dir.path() / "no" / "dir.csv").string()), InputError);
 }
 
 }  // namespace aerobox
