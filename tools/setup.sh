@@ -23,6 +23,8 @@ packages=(
   libcli11-dev libtomlplusplus-dev libbenchmark-dev
   # tests/
   doctest-dev
+  # tools/plot_telemetry.py (run by tools/fly.sh, tested by tools/test.sh)
+  python3-pandas python3-matplotlib
 )
 if [ "${1:-}" = "--bench" ]; then
   # OMPL 1.5.2 as the planners' reference; its CMake config links these Boost libraries

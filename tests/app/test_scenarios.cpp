@@ -1,0 +1,139 @@
+// Scenario tests (CTest label "scenario"): every map flown headless through the real command,
+// with DESIGN.md's success criteria: the goal reached (within 0.10 m and below 0.10 m/s before
+// the trajectory's end + 5 s), no contact with any obstacle, a positive minimum clearance, and
+// tracking error under a bound.
+#include <doctest/doctest.h>
+
+#include <sstream>
+#include <vector>
+
+#include "app/cli.h"
+#include "app/exit_codes.h"
+#include "test_support.h"
+
+namespace aerobox {
+namespace {
+
+// Tracking bounds [m]: the trajectories run at up to 2 m/s and 2 m/s^2, where the controller's
+// figure-8 test tracks with 3.9 cm RMS and 8 cm at most; a little more for take-offs from the
+// floor and sharp corners.
+constexpr double kMaxRms = 0.06;
+constexpr double kMaxError = 0.15;
+
+// A number from summary.json ("key": value).
+double SummaryNumber(const std::string& json, const std::string& key) {
+  const size_t at = json.find("\"" + key + "\": ");
+  REQUIRE_MESSAGE(at != std::string::npos, key);
+  const std::string value = json.substr(at + key.size() + 4, 24);
+  return value.rfind("null", 0) == 0 ? 1e300 : std::stod(value);
+}
+
+struct Flight {
+  int code = -1;
+  std::string out;
+  std::string err;
+  std::string summary;
+};
+
+Flight Fly(const std::string& input, std::vector<std::string> extra = {}) {
+  const testing::TempDir dir;
+  std::vector<std::string> args = {
+      "aerobox", "fly", input, "--no-video", "--quiet", "--out", (dir.path() / "out").string()};
+  args.insert(args.end(), extra.begin(), extra.end());
+  std::vector<const char*> argv;
+  for (const std::string& a : args) argv.push_back(a.c_str());
+  std::ostringstream out, err;
+  Flight flight;
+  flight.code = RunCli(static_cast<int>(argv.size()), argv.data(), out, err);
+  flight.out = out.str();
+  flight.err = err.str();
+  flight.summary = testing::ReadFile(dir.path() / "out" / "summary.json");
+  return flight;
+}
+
+void CheckSuccess(const std::string& input, std::vector<std::string> extra = {}) {
+  CAPTURE(input);
+  const Flight flight = Fly(input, extra);
+  CAPTURE(flight.out);
+  CAPTURE(flight.err);
+  REQUIRE(flight.code == kExitReachedGoal);
+  CHECK(flight.summary.find("\"flight_status\": \"reached goal\"") != std::string::npos);
+  CHECK(SummaryNumber(flight.summary, "collisions") == 0);
+  CHECK(SummaryNumber(flight.summary, "min_clearance_m") > 0);
+  CHECK(SummaryNumber(flight.summary, "tracking_rms_m") < kMaxRms);
+  CHECK(SummaryNumber(flight.summary, "tracking_max_m") < kMaxError);
+  MESSAGE(input << ": RMS " << SummaryNumber(flight.summary, "tracking_rms_m") << " m, max "
+                << SummaryNumber(flight.summary, "tracking_max_m") << " m, clearance "
+                << SummaryNumber(flight.summary, "min_clearance_m") << " m");
+}
+
+std::string Scene(const char* name) {
+  return (testing::SourceDir() / "scenes" / name / "scenario.toml").string();
+}
+
+}  // namespace
+
+TEST_CASE("scenario window") { CheckSuccess(Scene("window")); }
+TEST_CASE("scenario maze") { CheckSuccess(Scene("maze")); }
+TEST_CASE("scenario forest") { CheckSuccess(Scene("forest")); }
+TEST_CASE("scenario over_under") { CheckSuccess(Scene("over_under")); }
+TEST_CASE("scenario saw") { CheckSuccess(Scene("saw")); }
+TEST_CASE("scenario slide") { CheckSuccess(Scene("slide")); }
+TEST_CASE("scenario empty") { CheckSuccess(Scene("empty")); }
+TEST_CASE("scenario grid_forest") { CheckSuccess(Scene("grid_forest")); }
+TEST_CASE("scenario pillar") { CheckSuccess(Scene("pillar")); }
+TEST_CASE("scenario double_pillar") { CheckSuccess(Scene("double_pillar")); }
+TEST_CASE("scenario custom_pillars") { CheckSuccess(Scene("custom_pillars")); }
+TEST_CASE("scenario vortex_shedding") { CheckSuccess(Scene("vortex_shedding")); }
+
+TEST_CASE("scenario impossible: exit 3, no path") {
+  const Flight flight = Fly(Scene("impossible"));
+  CHECK(flight.code == kExitNoPath);
+  CHECK(flight.out.find("no path") != std::string::npos);
+  CHECK(flight.summary.find("\"status\": \"no path\"") != std::string::npos);
+}
+
+TEST_CASE("scenario window and forest, five seeds each") {
+  for (const char* scene : {"window", "forest"}) {
+    for (const char* seed : {"1", "2", "3", "4", "5"}) {
+      CAPTURE(seed);
+      CheckSuccess(Scene(scene), {"--seed", seed});
+    }
+  }
+}
+
+// The published maps that carry no licence are read from ../shared/maps, not shipped.
+TEST_CASE("scenario RBE595 map2 (official start and goal)") {
+  AEROBOX_REQUIRE_SHARED_MAPS(maps);
+  CheckSuccess((maps / "rbe595/map2.txt").string());
+}
+
+TEST_CASE("scenario RBE595 P2b real room (official start and goal on the floor)") {
+  AEROBOX_REQUIRE_SHARED_MAPS(maps);
+  CheckSuccess((maps / "rbe595/p2b_real_map1.txt").string());
+}
+
+TEST_CASE("scenario RBE595 map1 (no published start or goal: ours)") {
+  AEROBOX_REQUIRE_SHARED_MAPS(maps);
+  // from in front of the windowed wall to the gap between the last two walls
+  CheckSuccess((maps / "rbe595/map1.txt").string(), {"--start", "5,-4,1", "--goal", "5,17,2.5"});
+}
+
+TEST_CASE("scenario RBE595 map4 (no published start or goal: ours)") {
+  AEROBOX_REQUIRE_SHARED_MAPS(maps);
+  // across the hall, past the small cube and around the tall wall
+  CheckSuccess((maps / "rbe595/map4.txt").string(), {"--start", "2,10,1", "--goal", "40,20,3"});
+}
+
+TEST_CASE("scenario RBE595 map3: the official start has no room for the vehicle's clearance") {
+  AEROBOX_REQUIRE_SHARED_MAPS(maps);
+  // start (0, 3, 2) lies between the boundary and a wall at x = 0.1: exactly the vehicle's
+  // 0.10 m width, so no clearance can be kept there; the run refuses it and says why
+  const Flight flight = Fly((maps / "rbe595/map3.txt").string());
+  CHECK(flight.code == kExitBadInput);
+  CHECK(flight.err.find("start: 0, 3, 2 is within the 0.1 m clearance") != std::string::npos);
+  // from 0.5 m into the room, the official goal is reached
+  CheckSuccess((maps / "rbe595/map3.txt").string(), {"--start", "0,3,4.5"});
+}
+
+}  // namespace aerobox
