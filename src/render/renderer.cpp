@@ -155,8 +155,10 @@ Renderer::Renderer(Simulation* sim, const RenderSettings& settings)
   impl_->sim = sim;
   impl_->settings = settings;
   impl_->context = std::make_unique<OffscreenContext>(settings.width, settings.height);
-  // multisampling is read from the model when the GL context is made
+  // multisampling and the shadow map's size are read from the model when the GL context is
+  // made; the fast preset draws no shadows, so it allocates no 4096^2 shadow map either
   m->vis.quality.offsamples = settings.quality == Quality::kPretty ? 4 : 0;
+  if (settings.quality == Quality::kFast) m->vis.quality.shadowsize = 1;
   mjv_defaultScene(&impl_->scene);
   mjv_defaultOption(&impl_->option);
   mjr_defaultContext(&impl_->gl);
