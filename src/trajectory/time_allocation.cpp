@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+
+#include "trajectory/min_snap.h"
 
 namespace aerobox {
 
@@ -17,6 +20,62 @@ std::vector<double> TrapezoidDurations(const std::vector<Vec3>& waypoints, doubl
   for (size_t i = 1; i < waypoints.size(); ++i) {
     durations.push_back(
         TrapezoidTime((waypoints[i] - waypoints[i - 1]).norm(), max_speed, max_accel));
+  }
+  return durations;
+}
+
+std::vector<double> RefineDurations(const std::vector<Vec3>& waypoints,
+                                    std::vector<double> durations, int iterations) {
+  const size_t n = durations.size();
+  if (n < 2) return durations;
+  const std::vector<double> floor_times = [&] {
+    std::vector<double> f;
+    for (const double t : durations) f.push_back(0.05 * t);
+    return f;
+  }();
+  const auto cost = [&waypoints](const std::vector<double>& times) {
+    MinSnapProblem problem;
+    problem.waypoints = waypoints;
+    problem.durations = times;
+    return SolveMinSnapClosedForm(problem).SnapCost();
+  };
+  double current = cost(durations);
+  const double total = std::accumulate(durations.begin(), durations.end(), 0.0);
+  double step = 0.1 * total / n;  // [s] of the first move along the normalised gradient
+  for (int iteration = 0; iteration < iterations && step > 1e-4 * total / n; ++iteration) {
+    // gradient by forward differences, projected onto "the sum stays the same"
+    std::vector<double> gradient(n);
+    for (size_t i = 0; i < n; ++i) {
+      std::vector<double> moved = durations;
+      const double h = 1e-4 * durations[i];
+      moved[i] += h;
+      gradient[i] = (cost(moved) - current) / h;
+    }
+    const double mean = std::accumulate(gradient.begin(), gradient.end(), 0.0) / n;
+    double norm = 0.0;
+    for (double& g : gradient) {
+      g -= mean;
+      norm += g * g;
+    }
+    norm = std::sqrt(norm);
+    if (norm == 0.0) break;
+    // backtracking: halve the step until the cost goes down (or give up on this direction)
+    while (step > 1e-4 * total / n) {
+      std::vector<double> trial = durations;
+      bool valid = true;
+      for (size_t i = 0; i < n; ++i) {
+        trial[i] -= step * gradient[i] / norm;
+        valid = valid && trial[i] >= floor_times[i];
+      }
+      const double trial_cost = valid ? cost(trial) : current;
+      if (valid && trial_cost < current) {
+        durations = trial;
+        current = trial_cost;
+        step *= 1.5;
+        break;
+      }
+      step *= 0.5;
+    }
   }
   return durations;
 }

@@ -16,6 +16,14 @@ double TrapezoidTime(double length, double max_speed, double max_accel);
 std::vector<double> TrapezoidDurations(const std::vector<Vec3>& waypoints, double max_speed,
                                        double max_accel);
 
+// Redistributes `durations` (their sum fixed) to lower the equality-constrained minimum-snap
+// cost through `waypoints` (Mellinger and Kumar 2011, section IV: gradient descent on the time
+// ratios, the gradient by finite differences of the closed-form solve). Trapezoidal times stop
+// at every waypoint; these let the vehicle carry speed through them. `iterations` steps of
+// projected gradient descent with backtracking; no segment drops below 5 % of its start.
+std::vector<double> RefineDurations(const std::vector<Vec3>& waypoints,
+                                    std::vector<double> durations, int iterations);
+
 // Stretches or compresses time uniformly (the path in space stays the same) so that the
 // largest sampled speed and acceleration (every `dt` seconds) reach their limits and do not
 // exceed them. Scaling time by f divides speeds by f and accelerations by f^2. Returns f.

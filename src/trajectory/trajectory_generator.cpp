@@ -59,6 +59,7 @@ void TrajectoryParams::Validate() const {
     fail("corridor_margin", corridor_margin);
   if (samples_per_segment < 1) fail("samples_per_segment", samples_per_segment);
   if (max_refinements < 0) fail("max_refinements", max_refinements);
+  if (time_refinement_steps < 0) fail("time_refinement_steps", time_refinement_steps);
   if (!(check_step > 0 && check_step <= 0.1)) fail("check_step", check_step);
 }
 
@@ -107,7 +108,9 @@ TrajectoryResult GenerateTrajectory(const std::vector<Vec3>& path, const Traject
 
     MinSnapProblem problem;
     problem.waypoints = waypoints;
-    problem.durations = TrapezoidDurations(waypoints, params.max_speed, params.max_accel);
+    problem.durations = RefineDurations(
+        waypoints, TrapezoidDurations(waypoints, params.max_speed, params.max_accel),
+        params.time_refinement_steps);
     problem.samples_per_segment = params.samples_per_segment;
     result.corridors.assign(problem.durations.size(), std::nullopt);
     if (params.use_corridors) {

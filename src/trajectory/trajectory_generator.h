@@ -25,6 +25,8 @@ struct TrajectoryParams {
   int samples_per_segment = 16;  // constrained samples per segment
   int max_refinements = 8;       // rounds of inserting midpoints where the trajectory collides
   double check_step = 0.01;      // [s] between samples of the collision check and the limits
+  // gradient steps redistributing the trapezoidal times to lower the snap (0: keep them)
+  int time_refinement_steps = 20;
   IpoptSettings ipopt;
 
   // Throws std::invalid_argument naming the field and value.

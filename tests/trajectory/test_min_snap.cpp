@@ -120,6 +120,30 @@ TEST_CASE("Ipopt with corridors: samples stay inside, the cost rises, infeasible
   CHECK_FALSE(impossible.message.empty());
 }
 
+TEST_CASE(
+    "time refinement keeps the total, lowers the snap, and then the limits are reached sooner") {
+  const MinSnapProblem start = ZigZag(6);
+  const std::vector<double> refined = RefineDurations(start.waypoints, start.durations, 20);
+  double before = 0, after = 0;
+  for (size_t i = 0; i < refined.size(); ++i) {
+    before += start.durations[i];
+    after += refined[i];
+    CHECK(refined[i] >= 0.05 * start.durations[i]);
+  }
+  CHECK(after == doctest::Approx(before).epsilon(1e-9));
+  MinSnapProblem better = start;
+  better.durations = refined;
+  PiecewiseTrajectory old_times = SolveMinSnapClosedForm(start);
+  PiecewiseTrajectory new_times = SolveMinSnapClosedForm(better);
+  CHECK(new_times.SnapCost() < old_times.SnapCost());
+  // scaled to the same limits, the refined times fly the same path in less time
+  ScaleToLimits(2.0, 2.0, 0.002, &old_times);
+  ScaleToLimits(2.0, 2.0, 0.002, &new_times);
+  MESSAGE("durations at 2 m/s, 2 m/s^2: trapezoid " << old_times.duration() << " s, refined "
+                                                    << new_times.duration() << " s");
+  CHECK(new_times.duration() < old_times.duration());
+}
+
 TEST_CASE("trapezoid times and the uniform time scale to the limits") {
   CHECK(TrapezoidTime(4.0, 2.0, 2.0) == doctest::Approx(3.0));             // cruise: 4/2 + 2/2
   CHECK(TrapezoidTime(1.0, 2.0, 2.0) == doctest::Approx(std::sqrt(2.0)));  // triangle
