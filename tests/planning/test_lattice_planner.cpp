@@ -1,0 +1,66 @@
+#include <doctest/doctest.h>
+
+#include <random>
+
+#include "planning/lattice_planner.h"
+#include "planning/path_simplify.h"
+#include "planning/planning_test_util.h"
+
+namespace aerobox {
+namespace {
+
+// A small "city": a 200 x 200 m block of towers on a grid, some tall, some low.
+Map Blocks() {
+  Map map;
+  map.bounds = {Vec3(0, 0, 0), Vec3(200, 200, 60)};
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> height(10, 70);
+  int n = 0;
+  for (int i = 0; i < 8; ++i) {
+    for (int j = 0; j < 8; ++j) {
+      const Vec3 min(10 + 24 * i, 10 + 24 * j, 0);
+      map.boxes.push_back({{min, min + Vec3(14, 14, std::min(59.0, height(rng)))},
+                           Vec3(0.7, 0.7, 0.7),
+                           "block_" + std::to_string(n++),
+                           n});
+    }
+  }
+  return map;
+}
+
+}  // namespace
+
+TEST_CASE("lattice planner: collision-free long paths, built once, queried many times") {
+  const Map map = Blocks();
+  const CollisionWorld world(map, CollisionParams());
+  const Validity validity = testing::ValidityOf(world);
+  LatticeParams params;
+  params.spacing = 5.0;
+  params.vertical_spacing = 5.0;
+  params.min_altitude = 5.0;
+  params.max_altitude = 55.0;
+  const LatticePlanner planner(world.free_bounds(), validity, params);
+  CHECK(planner.stats().nodes > 1000);
+  CHECK(planner.stats().edges > planner.stats().nodes);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> where(2, 198), up(5, 20);
+  int queries = 0;
+  while (queries < 20) {
+    const Vec3 a(where(rng), where(rng), up(rng));
+    const Vec3 b(where(rng), where(rng), up(rng));
+    if ((a - b).norm() < 120 || !world.IsPointFree(a) || !world.IsPointFree(b)) continue;
+    ++queries;
+    CAPTURE(a.transpose());
+    CAPTURE(b.transpose());
+    const PlanResult result = planner.Plan(a, b);
+    REQUIRE(result.status == PlanStatus::kSolved);
+    CHECK(result.path.front() == a);
+    CHECK(result.path.back() == b);
+    CHECK(testing::DenselyFree(map, world.params(), result.path));
+    CHECK(result.stats.final_cost <= result.stats.tree_cost + 1e-9);
+    CHECK(result.stats.final_cost >= (a - b).norm() - 1e-9);
+  }
+  CHECK(planner.Plan(Vec3(15, 15, 5), Vec3(100, 100, 10)).status == PlanStatus::kStartInvalid);
+}
+
+}  // namespace aerobox
