@@ -143,6 +143,10 @@ int RunPlan(const FlightSetup& setup, const std::string& out_dir, std::ostream& 
         << "\n";
     return plan.result.status == PlanStatus::kNoPathWithinBudget ? kExitNoPath : kExitBadInput;
   }
+  if (plan.lattice) {
+    out << std::fixed << std::setprecision(3) << "lattice: " << plan.lattice->nodes << " nodes, "
+        << plan.lattice->edges << " edges, built in " << plan.lattice->build_time << " s\n";
+  }
   const std::string path_file = (std::filesystem::path(folder) / "path.csv").string();
   WriteFileAtomically(path_file, PathCsv(plan.result.path));
   std::ostringstream line;

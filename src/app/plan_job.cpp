@@ -91,8 +91,22 @@ PlanOutcome PlanFlight(const FlightSetup& setup) {
   const Validity validity{
       [&world](const Vec3& p) { return world.IsPointFree(p); },
       [&world](const Vec3& a, const Vec3& b) { return world.IsSegmentFree(a, b); }};
-  outcome.result =
-      PlanRrtStar(outcome.start.used, outcome.goal.used, world.free_bounds(), validity, rrt);
+  const Vec3 size = setup.map.bounds.Size();
+  const bool lattice = settings.planner == "lattice" ||
+                       (settings.planner == "auto" && size.head<2>().maxCoeff() > 200.0);
+  if (lattice) {
+    // the lattice's altitudes count from the map's floor
+    LatticeParams params = settings.lattice;
+    params.min_altitude += setup.map.bounds.min.z();
+    params.max_altitude += setup.map.bounds.min.z();
+    params.seed = setup.seed;
+    const LatticePlanner planner(world.free_bounds(), validity, params);
+    outcome.result = planner.Plan(outcome.start.used, outcome.goal.used);
+    outcome.lattice = planner.stats();
+  } else {
+    outcome.result =
+        PlanRrtStar(outcome.start.used, outcome.goal.used, world.free_bounds(), validity, rrt);
+  }
   if (outcome.result.status != PlanStatus::kSolved) return outcome;
 
   CollisionParams looser = settings.collision;

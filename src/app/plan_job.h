@@ -33,6 +33,8 @@ struct PlanOutcome {
   PlanResult result;
   // the minimum-snap trajectory along the path, when there is a path
   std::optional<TrajectoryResult> trajectory;
+  // when the lattice planned: its size and build time (query time is result.stats)
+  std::optional<LatticeStats> lattice;
 };
 
 // Plans the set-up's start to goal with its planning settings (its seed seeds the planner), then

@@ -2,7 +2,10 @@
 // the trajectory generator's.
 #pragma once
 
+#include <string>
+
 #include "geometry/collision_world.h"
+#include "planning/lattice_planner.h"
 #include "planning/rrt_star.h"
 #include "trajectory/trajectory_generator.h"
 
@@ -19,6 +22,10 @@ struct PlanningSettings {
     p.time_budget = 10.0;
     return p;
   }();
+  // "rrt_star", "lattice", or "auto": the lattice for maps wider than 200 m (a city), where
+  // one query crosses hundreds of metres, RRT* otherwise
+  std::string planner = "auto";
+  LatticeParams lattice;  // altitudes relative to the map's floor: see PlanFlight
   TrajectoryParams trajectory;
   // What the trajectory keeps from obstacles [m]: half the planner's, so that the corridors
   // around the planner's path have room to bend in.

@@ -71,14 +71,25 @@ void ReadPlanner(const toml::table& table, const std::string& file, PlanningSett
       rrt.rewire_factor = Number(node, file, field, 0.01, 100);
     } else if (name == "shortcut_attempts") {
       rrt.shortcut_attempts = static_cast<int>(Number(node, file, field, 0, 1e6));
+    } else if (name == "kind") {
+      const std::optional<std::string> value = node.value<std::string>();
+      if (!value || (*value != "auto" && *value != "rrt_star" && *value != "lattice")) {
+        throw InputError({file, LineOf(node)}, field,
+                         "expected \"auto\", \"rrt_star\" or \"lattice\"");
+      }
+      settings->planner = *value;
+    } else if (name == "lattice_spacing") {
+      settings->lattice.spacing = Number(node, file, field, 0.5, 100.0);
+      settings->lattice.vertical_spacing = settings->lattice.spacing;
     } else if (name == "informed") {
       if (!node.is_boolean())
         throw InputError({file, LineOf(node)}, field, "expected true or false");
       rrt.informed = node.as_boolean()->get();
     } else {
       throw InputError({file, LineOf(node)}, field,
-                       "unknown key (expected clearance, max_iterations, time_budget, max_step, "
-                       "goal_bias, rewire_factor, informed or shortcut_attempts)");
+                       "unknown key (expected kind, clearance, max_iterations, time_budget, "
+                       "max_step, goal_bias, rewire_factor, informed, shortcut_attempts or "
+                       "lattice_spacing)");
     }
   }
 }

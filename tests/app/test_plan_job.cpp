@@ -1,6 +1,8 @@
 // Planning every map that has a start and a goal: paths pass a dense second-method re-check.
 #include <doctest/doctest.h>
 
+#include <random>
+
 #include "../planning/planning_test_util.h"
 #include "app/plan_job.h"
 #include "common/error.h"
@@ -102,6 +104,46 @@ TEST_CASE("the same seed plans the same path") {
   const std::string scenario = (testing::SourceDir() / "scenes/forest/scenario.toml").string();
   const FlightSetup setup = LoadFlightSetup(scenario, {});
   CHECK(PlanFlight(setup).result.path == PlanFlight(setup).result.path);
+}
+
+}  // namespace aerobox
+
+namespace aerobox {
+
+TEST_CASE("the city: the lattice plans 600-700 m queries that pass the dense re-check") {
+  AEROBOX_REQUIRE_SHARED_MAPS(maps);
+  FlightSetup setup = LoadFlightSetup((maps / "fcnd/colliders.csv").string(), {});
+  // seeded random free pairs 600-700 m apart, 10-60 m up
+  const CollisionWorld world(setup.map, setup.planning.collision);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> x(setup.map.bounds.min.x() + 5,
+                                           setup.map.bounds.max.x() - 5);
+  std::uniform_real_distribution<double> y(setup.map.bounds.min.y() + 5,
+                                           setup.map.bounds.max.y() - 5);
+  std::uniform_real_distribution<double> z(10, 60);
+  int queries = 0;
+  int solved = 0;
+  while (queries < 20) {
+    const Vec3 a(x(rng), y(rng), z(rng));
+    const Vec3 b(x(rng), y(rng), z(rng));
+    const double d = (a - b).head<2>().norm();
+    if (d < 600 || d > 700 || !world.IsPointFree(a) || !world.IsPointFree(b)) continue;
+    ++queries;
+    setup.start = a;
+    setup.goal = b;
+    const PlanOutcome plan = PlanFlight(setup);
+    REQUIRE(plan.lattice);  // a 920 m map: the lattice, not RRT*
+    if (plan.result.status != PlanStatus::kSolved) continue;
+    ++solved;
+    // 5 cm between samples here, not 1 cm: 20 paths of 700 m against 3845 boxes brute force
+    // (the exact segment test already passed them; this is the second opinion)
+    CHECK(testing::DenselyFree(setup.map, setup.planning.collision, plan.result.path, 0.05));
+    CHECK(plan.trajectory);
+  }
+  MESSAGE("city: " << solved << " of " << queries << " queries solved");
+  // the lattice misses points in narrow shafts between buildings (see issue 8's note): all
+  // but at most one in twenty must be solved
+  CHECK(solved >= queries - 1);
 }
 
 }  // namespace aerobox
