@@ -210,9 +210,8 @@ int RunBench(const std::string& sections, const std::string& scenes, const std::
     const FlightSetup setup = LoadFlightSetup(scenario, {});
     if (!setup.goal) throw InputError({scenario, 0}, "goal", "the benchmark needs a goal");
     const CollisionWorld world(setup.map, CollisionParams());
-    problems.push_back({name, setup.map,
-                        ResolveEndpoint(setup.map, world, setup.start, "start").used,
-                        ResolveEndpoint(setup.map, world, *setup.goal, "goal").used});
+    const auto [start, goal] = ResolveEndpoints(setup.map, world, setup.start, *setup.goal);
+    problems.push_back({name, setup.map, start.used, goal.used});
   }
   out << "## RRT*: aerobox against OMPL " << (HaveOmpl() ? "1.5.2" : "(not built)") << ", " << seeds
       << " seeds, " << seconds << " s each\n\n";

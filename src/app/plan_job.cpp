@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "common/error.h"
 #include "common/number_format.h"
@@ -31,18 +32,20 @@ const std::vector<Vec3>& SearchOffsets() {
   return offsets;
 }
 
-}  // namespace
+// The same world without the clearance: where the vehicle itself fits.
+CollisionWorld Touching(const Map& map, const CollisionWorld& world) {
+  CollisionParams tight = world.params();
+  tight.clearance = 0.0;
+  return CollisionWorld(map, tight);
+}
 
-Endpoint ResolveEndpoint(const Map& map, const CollisionWorld& world, const Vec3& p,
-                         const std::string& what) {
+Endpoint Resolve(const Map& map, const CollisionWorld& world, const CollisionWorld& touching,
+                 const Vec3& p, const std::string& what) {
   const SourceLocation where{map.source, 0};
   if (!map.bounds.Contains(p)) {
     throw InputError(where, what, FormatVector(p, ", ") + " lies outside the map bounds");
   }
   // the vehicle itself (no clearance) must fit where it is asked to be, once off the walls
-  CollisionParams tight = world.params();
-  tight.clearance = 0.0;
-  const CollisionWorld touching(map, tight);
   const Vec3 physical = touching.ProjectIntoFreeBounds(p).point;
   if (const auto box = touching.OverlappingBox(physical)) {
     const Box& b = map.boxes[*box];
@@ -79,13 +82,27 @@ Endpoint ResolveEndpoint(const Map& map, const CollisionWorld& world, const Vec3
   return endpoint;
 }
 
+}  // namespace
+
+Endpoint ResolveEndpoint(const Map& map, const CollisionWorld& world, const Vec3& p,
+                         const std::string& what) {
+  return Resolve(map, world, Touching(map, world), p, what);
+}
+
+std::pair<Endpoint, Endpoint> ResolveEndpoints(const Map& map, const CollisionWorld& world,
+                                               const Vec3& start, const Vec3& goal) {
+  const CollisionWorld touching = Touching(map, world);
+  return {Resolve(map, world, touching, start, "start"),
+          Resolve(map, world, touching, goal, "goal")};
+}
+
 PlanOutcome PlanFlight(const FlightSetup& setup) {
   const PlanningSettings& settings = setup.planning;
   if (!setup.goal) throw InputError({setup.map.source, 0}, "goal", "no goal given");
   const CollisionWorld world(setup.map, settings.collision);
   PlanOutcome outcome;
-  outcome.start = ResolveEndpoint(setup.map, world, setup.start, "start");
-  outcome.goal = ResolveEndpoint(setup.map, world, *setup.goal, "goal");
+  std::tie(outcome.start, outcome.goal) =
+      ResolveEndpoints(setup.map, world, setup.start, *setup.goal);
   RrtStarParams rrt = settings.rrt;
   rrt.seed = setup.seed;
   const Validity validity{

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 
 #include "app/scenario.h"
 #include "geometry/collision_world.h"
@@ -26,6 +27,10 @@ struct Endpoint {
 // there is no such point.
 Endpoint ResolveEndpoint(const Map& map, const CollisionWorld& world, const Vec3& p,
                          const std::string& what);
+
+// Start and goal at once, sharing the clearance-free world both checks need.
+std::pair<Endpoint, Endpoint> ResolveEndpoints(const Map& map, const CollisionWorld& world,
+                                               const Vec3& start, const Vec3& goal);
 
 struct PlanOutcome {
   Endpoint start;
