@@ -34,7 +34,7 @@ const char* ToString(FlightStatus status) {
 
 Reference ReferenceOf(const PiecewiseTrajectory& trajectory) {
   return {trajectory.duration(), [trajectory](double t, int derivative) -> Vec3 {
-            return trajectory.Evaluate(t, derivative);
+            return trajectory.Evaluate3(t, derivative);
           }};
 }
 

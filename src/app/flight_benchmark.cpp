@@ -2,8 +2,12 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <functional>
 #include <iomanip>
 #include <map>
+#include <memory>
+#include <vector>
 
 #include "app/benchmark_medians.h"
 #include "app/flight.h"
@@ -13,7 +17,15 @@
 namespace aerobox {
 namespace {
 
-constexpr int kStepsPerIteration = 2000;  // 2 s of flight at 1 ms
+constexpr double kWindow = 2.0;  // [s] of flight per benchmark iteration
+
+// The controls MuJoCo saw at each step of a recorded flight (mjcb_control is global; the
+// benchmark is single-threaded and clears it after recording).
+std::vector<std::vector<double>>* recorded_controls = nullptr;
+
+void RecordControls(const mjModel* m, mjData* d) {
+  recorded_controls->emplace_back(d->ctrl, d->ctrl + m->nu);
+}
 
 }  // namespace
 
@@ -27,62 +39,97 @@ void CompareClosedLoop(const std::string& scenario, std::ostream& out, std::ostr
   const std::string xml = SceneMjcfFor(setup);
   const QuadParams vehicle;
   const Reference full = ReferenceOf(plan.trajectory->trajectory);
-
-  // bare: the same model, mj_step with hover thrusts, nothing else
-  benchmark::RegisterBenchmark("bare",
-                               [&](benchmark::State& state) {
-                                 Simulation sim = Simulation::FromXml(xml, "bench");
-                                 sim.SetRotorThrusts(Vec4::Constant(vehicle.HoverThrustPerRotor()));
-                                 const Vec4 hover = Vec4::Constant(vehicle.HoverThrustPerRotor());
-                                 for (auto _ : state) {
-                                   for (int i = 0; i < kStepsPerIteration; ++i) sim.Step(hover);
-                                 }
-                               })
-      ->Unit(benchmark::kSecond)
-      ->Repetitions(5)
-      ->ReportAggregatesOnly(true);
-
-  // closed loop: 2 s windows of the scenario's trajectory, with the cascade, the contact
-  // check, the clearance query and a telemetry row every control step
   const CollisionWorld world(setup.map, CollisionParams{vehicle.collision_size, 0.0});
-  benchmark::RegisterBenchmark(
-      "closed",
-      [&](benchmark::State& state) {
-        FlightParams params;
-        params.settle_time = 0.0;
-        long window = 0;
-        for (auto _ : state) {
-          state.PauseTiming();
-          Simulation sim = Simulation::FromXml(xml, "bench");
-          const double t0 = 2.0 * (window++ % std::max(1, static_cast<int>(full.duration / 2.0)));
-          const Reference slice{2.0 - 1e-9, [&full, t0](double t, int d) {
-                                  return full.evaluate(std::min(t0 + t, full.duration), d);
-                                }};
-          sim.SetVehicleState(State{slice.evaluate(0, kPosition), slice.evaluate(0, kVelocity),
-                                    Quat::Identity(), Vec3::Zero()});
-          sim.SetRotorThrusts(Vec4::Constant(vehicle.HoverThrustPerRotor()));
-          CsvTable telemetry = TelemetryTable();
-          state.ResumeTiming();
-          const FlightResult result = FlyTrajectory(
-              slice, params, vehicle, [&world](const Vec3& p) { return world.Clearance(p); },
-              [&telemetry](const TelemetrySample& s) { AddTelemetryRow(s, &telemetry); }, &sim);
-          state.counters["steps"] = static_cast<double>(result.steps);
-          benchmark::DoNotOptimize(telemetry.rows());
-        }
-      })
-      ->Unit(benchmark::kSecond)
-      ->Repetitions(5)
-      ->ReportAggregatesOnly(true);
+
+  // the trajectory in 2 s windows, each flown from its own start state
+  const int windows = std::max(1, static_cast<int>(full.duration / kWindow));
+  const auto window_reference = [&full](int w) {
+    const double t0 = kWindow * w;
+    return Reference{kWindow - 1e-9, [&full, t0](double t, int d) {
+                       return full.evaluate(std::min(t0 + t, full.duration), d);
+                     }};
+  };
+  const auto start_window = [&](int w) {
+    auto sim = std::make_unique<Simulation>(Simulation::FromXml(xml, "bench"));
+    const Reference slice = window_reference(w);
+    sim->SetVehicleState(State{slice.evaluate(0, kPosition), slice.evaluate(0, kVelocity),
+                               Quat::Identity(), Vec3::Zero()});
+    sim->SetRotorThrusts(Vec4::Constant(vehicle.HoverThrustPerRotor()));
+    return sim;
+  };
+  const auto fly_window = [&](int w, bool with_clearance, bool with_telemetry, Simulation* sim,
+                              CsvTable* telemetry) {
+    FlightParams params;
+    params.settle_time = 0.0;
+    std::function<double(const Vec3&)> clearance;
+    if (with_clearance) clearance = [&world](const Vec3& p) { return world.Clearance(p); };
+    std::function<void(const TelemetrySample&)> sink;
+    if (with_telemetry) {
+      sink = [telemetry](const TelemetrySample& s) { AddTelemetryRow(s, telemetry); };
+    }
+    return FlyTrajectory(window_reference(w), params, vehicle, clearance, sink, sim);
+  };
+
+  // bare: each window's recorded controls replayed open loop with mj_step alone, so MuJoCo
+  // does the same work (same states, same contact candidates near the walls) as in the flight
+  std::vector<std::vector<std::vector<double>>> controls(windows);
+  for (int w = 0; w < windows; ++w) {
+    const std::unique_ptr<Simulation> sim = start_window(w);
+    CsvTable telemetry = TelemetryTable();
+    recorded_controls = &controls[w];
+    mjcb_control = RecordControls;
+    fly_window(w, true, true, sim.get(), &telemetry);
+    mjcb_control = nullptr;
+    recorded_controls = nullptr;
+  }
+  long steps_per_pass = 0;
+  for (const auto& c : controls) steps_per_pass += static_cast<long>(c.size());
+
+  // each iteration flies (or replays) every window once
+  const auto register_loop = [&](const char* name, auto run_window) {
+    benchmark::RegisterBenchmark(name,
+                                 [&, run_window](benchmark::State& state) {
+                                   for (auto _ : state) {
+                                     for (int w = 0; w < windows; ++w) {
+                                       state.PauseTiming();
+                                       std::unique_ptr<Simulation> sim = start_window(w);
+                                       CsvTable telemetry = TelemetryTable();
+                                       state.ResumeTiming();
+                                       run_window(w, sim.get(), &telemetry);
+                                       benchmark::DoNotOptimize(telemetry.rows());
+                                     }
+                                   }
+                                 })
+        ->Unit(benchmark::kSecond)
+        ->Repetitions(5)
+        ->ReportAggregatesOnly(true);
+  };
+  register_loop("bare", [&](int w, Simulation* sim, CsvTable*) {
+    const mjModel* m = sim->model();
+    mjData* d = sim->mutable_data();
+    for (const std::vector<double>& ctrl : controls[w]) {
+      std::copy(ctrl.begin(), ctrl.end(), d->ctrl);
+      mj_step(m, d);
+    }
+  });
+  register_loop("cascade", [&](int w, Simulation* sim, CsvTable* telemetry) {
+    fly_window(w, false, false, sim, telemetry);
+  });
+  register_loop("closed", [&](int w, Simulation* sim, CsvTable* telemetry) {
+    fly_window(w, true, true, sim, telemetry);
+  });
 
   progress << "timing the closed loop ..." << std::flush;
   const std::map<std::string, double> medians = RunRegisteredBenchmarks();
   progress << "\r" << std::string(40, ' ') << "\r" << std::flush;
 
-  const double bare = kStepsPerIteration / medians.at("bare");
-  const double closed = kStepsPerIteration / medians.at("closed");
+  const double bare = steps_per_pass / medians.at("bare");
+  const double cascade = steps_per_pass / medians.at("cascade");
+  const double closed = steps_per_pass / medians.at("closed");
   out << std::fixed << std::setprecision(0) << "| loop | steps/s |\n|---|---|\n"
-      << "| bare mj_step | " << bare << " |\n| closed loop (cascade, contacts, clearance, "
-      << "telemetry) | " << closed << " |\n\n"
+      << "| bare mj_step, the flight's controls replayed | " << bare << " |\n"
+      << "| cascade and contact check | " << cascade << " |\n"
+      << "| closed loop (cascade, contacts, clearance, telemetry) | " << closed << " |\n\n"
       << std::setprecision(2) << "Ratio closed / bare: " << closed / bare << "\n";
 }
 

@@ -5,7 +5,9 @@
 #include <atomic>
 #include <chrono>
 #include <filesystem>
+#include <future>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 
 #include "app/exit_codes.h"
@@ -71,8 +73,42 @@ int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& ou
   const std::string folder = PrepareOutputFolder(options.out_dir, setup.name);
   const auto file = [&folder](const char* name) { return (fs::path(folder) / name).string(); };
 
-  // plan and solve
-  const PlanOutcome plan = PlanFlight(setup);
+  // The scene and the renderer do not depend on the plan, so they are made on a second thread
+  // while the planner runs: loading the scene's textures into the GL context compiles
+  // llvmpipe's shaders, which takes about as long as planning.
+  if (options.quality != "fast" && options.quality != "pretty") {
+    throw InputError({"command line", 0}, "--quality", "expected fast or pretty");
+  }
+  if (!(options.fps > 0 && options.fps <= 240) || !(options.speed > 0)) {
+    throw InputError({"command line", 0}, "--fps/--speed", "must be positive (fps at most 240)");
+  }
+  const RenderSettings render_settings{
+      options.width, options.height,
+      options.quality == "pretty" ? Quality::kPretty : Quality::kFast};
+  const QuadParams vehicle;
+  std::unique_ptr<Simulation> sim;
+  std::unique_ptr<Renderer> renderer;
+  std::future<void> prepared = std::async(std::launch::async, [&] {
+    sim = std::make_unique<Simulation>(
+        Simulation::FromXml(SceneMjcfFor(setup), setup.name + " (scene)"));
+    try {
+      renderer = std::make_unique<Renderer>(sim.get(), render_settings);
+    } catch (const std::invalid_argument& e) {
+      throw InputError({"command line", 0}, "--size", e.what());
+    }
+    renderer->ReleaseFromThread();
+  });
+
+  // plan and solve; the preparation is waited for on every way out
+  std::optional<PlanOutcome> planned;
+  try {
+    planned = PlanFlight(setup);
+  } catch (...) {
+    prepared.wait();
+    throw;
+  }
+  prepared.get();  // rethrows what the preparation threw
+  const PlanOutcome& plan = *planned;
   JsonObject summary;
   summary.Add("scenario", setup.name).Add("seed", static_cast<long long>(setup.seed));
   const auto finish = [&](const char* status, int code) {
@@ -103,13 +139,11 @@ int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& ou
   WriteFileAtomically(file("trajectory.csv"), TrajectoryCsv(trajectory.trajectory));
 
   // fly: the vehicle rests at the start (on the floor when the start is at floor level)
-  const QuadParams vehicle;
-  Simulation sim = Simulation::FromXml(SceneMjcfFor(setup), setup.name + " (scene)");
   const Vec3 rest = VehicleRestPosition(setup.map, vehicle, setup.start);
   if (rest.z() > setup.map.bounds.min.z() + 0.5 * vehicle.collision_size.z() + 1e-9) {
     // in the air: start at the trajectory's first point, rotors at hover thrust
-    sim.SetVehicleState(State{plan.start.used, Vec3::Zero(), Quat::Identity(), Vec3::Zero()});
-    sim.SetRotorThrusts(Vec4::Constant(vehicle.HoverThrustPerRotor()));
+    sim->SetVehicleState(State{plan.start.used, Vec3::Zero(), Quat::Identity(), Vec3::Zero()});
+    sim->SetRotorThrusts(Vec4::Constant(vehicle.HoverThrustPerRotor()));
   }
   const CollisionWorld world(setup.map, CollisionParams{vehicle.collision_size, 0.0});
   // telemetry is streamed to telemetry.csv.partial as the vehicle flies, in blocks of rows, and
@@ -120,16 +154,6 @@ int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& ou
   telemetry_file.Append(telemetry.Text());  // the header; blocks of rows follow
 
   // rendering: frames sampled on simulation time, encoded on a worker thread
-  if (options.quality != "fast" && options.quality != "pretty") {
-    throw InputError({"command line", 0}, "--quality", "expected fast or pretty");
-  }
-  if (!(options.fps > 0 && options.fps <= 240) || !(options.speed > 0)) {
-    throw InputError({"command line", 0}, "--fps/--speed", "must be positive (fps at most 240)");
-  }
-  const RenderSettings render_settings{
-      options.width, options.height,
-      options.quality == "pretty" ? Quality::kPretty : Quality::kFast};
-  std::unique_ptr<Renderer> renderer;
   std::unique_ptr<VideoEncoder> video;
   const CameraSpec camera = ParseCamera(options.camera);
   Overlay overlay;
@@ -139,11 +163,6 @@ int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& ou
   for (double t = 0; t <= trajectory.trajectory.duration(); t += 0.05) {
     overlay.trajectory.push_back(trajectory.trajectory.Evaluate(t, kPosition));
     overlay.speeds.push_back(trajectory.trajectory.Evaluate(t, kVelocity).norm());
-  }
-  try {
-    renderer = std::make_unique<Renderer>(&sim, render_settings);
-  } catch (const std::invalid_argument& e) {
-    throw InputError({"command line", 0}, "--size", e.what());
   }
   if (options.video) {
     try {
@@ -208,7 +227,7 @@ int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& ou
   try {
     flight = FlyTrajectory(
         ReferenceOf(trajectory.trajectory), FlightParams(), vehicle,
-        [&world](const Vec3& p) { return world.Clearance(p); }, on_sample, &sim);
+        [&world](const Vec3& p) { return world.Clearance(p); }, on_sample, sim.get());
   } catch (const Interrupted&) {
     if (show_progress) err << "\n";
     err << "aerobox: interrupted: no video, telemetry or summary written\n";
@@ -220,7 +239,7 @@ int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& ou
   if (video) video->Finish();
 
   // overview.png: the map, the path, the trajectory and the flown trail in one picture
-  overlay.text = Hud(flight.time, sim.VehicleState(), ToString(flight.status));
+  overlay.text = Hud(flight.time, sim->VehicleState(), ToString(flight.status));
   renderer->Render({CameraKind::kOverview, ""}, overlay, &image);
   WriteFileAtomically(file("overview.png"), EncodePng(image));
   telemetry_file.Append(telemetry.Text().substr(header_length));
@@ -234,7 +253,7 @@ int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& ou
       .Add("min_clearance_m", flight.min_clearance)
       .Add("collisions", flight.status == FlightStatus::kCollision ? 1 : 0)
       .Add("collision_with", flight.obstacle)
-      .Add("telemetry_rate_hz", 1.0 / (sim.timestep() * FlightParams().cascade.outer_divider))
+      .Add("telemetry_rate_hz", 1.0 / (sim->timestep() * FlightParams().cascade.outer_divider))
       .Add("video_frames", frames)
       .Add("video_fps", options.fps);
 

@@ -5,21 +5,32 @@
 
 namespace aerobox {
 
-std::string FormatNumber(double value) {
+void AppendNumber(double value, std::string* text) {
   if (value == 0.0) value = 0.0;  // folds -0 into 0
   char buffer[32];
   const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return std::string(buffer, result.ptr);
+  text->append(buffer, result.ptr);
+}
+
+std::string FormatNumber(double value) {
+  std::string text;
+  AppendNumber(value, &text);
+  return text;
 }
 
 std::string FormatVector(const Eigen::Ref<const Eigen::VectorXd>& values,
                          std::string_view separator) {
   std::string text;
-  for (Eigen::Index i = 0; i < values.size(); ++i) {
-    if (i > 0) text += separator;
-    text += FormatNumber(values[i]);
-  }
+  AppendVector(values, separator, &text);
   return text;
+}
+
+void AppendVector(const Eigen::Ref<const Eigen::VectorXd>& values, std::string_view separator,
+                  std::string* text) {
+  for (Eigen::Index i = 0; i < values.size(); ++i) {
+    if (i > 0) text->append(separator);
+    AppendNumber(values[i], text);
+  }
 }
 
 bool ParseNumber(std::string_view token, double* value) {

@@ -38,4 +38,6 @@ void OffscreenContext::MakeCurrent() {
   }
 }
 
+void OffscreenContext::ReleaseCurrent() { OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0); }
+
 }  // namespace aerobox

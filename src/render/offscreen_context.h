@@ -16,6 +16,9 @@ class OffscreenContext {
 
   // Makes this context current on the calling thread.
   void MakeCurrent();
+  // Unbinds the calling thread's current context, so that another thread may make this one
+  // current (a context is current in at most one thread).
+  static void ReleaseCurrent();
 
  private:
   struct Impl;

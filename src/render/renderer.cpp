@@ -159,6 +159,9 @@ Renderer::Renderer(Simulation* sim, const RenderSettings& settings)
   // made; the fast preset draws no shadows, so it allocates no 4096^2 shadow map either
   m->vis.quality.offsamples = settings.quality == Quality::kPretty ? 4 : 0;
   if (settings.quality == Quality::kFast) m->vis.quality.shadowsize = 1;
+  // the off-screen buffer only needs the image's size; a smaller one is quicker to allocate
+  m->vis.global.offwidth = settings.width;
+  m->vis.global.offheight = settings.height;
   mjv_defaultScene(&impl_->scene);
   mjv_defaultOption(&impl_->option);
   mjr_defaultContext(&impl_->gl);
@@ -172,9 +175,19 @@ Renderer::Renderer(Simulation* sim, const RenderSettings& settings)
 }
 
 Renderer::~Renderer() {
-  mjr_freeContext(&impl_->gl);
+  // the GL objects belong to the context, whichever thread made them; without it current,
+  // nothing can be freed here, and OSMesa frees them with the context
+  bool current = true;
+  try {
+    impl_->context->MakeCurrent();
+  } catch (const std::runtime_error&) {
+    current = false;
+  }
+  if (current) mjr_freeContext(&impl_->gl);
   mjv_freeScene(&impl_->scene);
 }
+
+void Renderer::ReleaseFromThread() { OffscreenContext::ReleaseCurrent(); }
 
 int Renderer::width() const { return impl_->settings.width; }
 int Renderer::height() const { return impl_->settings.height; }

@@ -56,6 +56,10 @@ class Renderer {
   // for a named camera the scene does not have.
   void Render(const CameraSpec& camera, const Overlay& overlay, Image* out);
 
+  // Lets another thread render from now on: the constructor leaves the GL context current in
+  // the thread that made it, and each Render() makes it current in its own thread.
+  void ReleaseFromThread();
+
   int width() const;
   int height() const;
 

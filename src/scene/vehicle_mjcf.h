@@ -7,6 +7,10 @@
 
 namespace aerobox::scene_detail {
 
+// Children of <asset>: the vehicle's visual meshes, one closed triangle mesh per colour, which
+// the body's visual geoms reference.
+void WriteVehicleMeshes(const QuadParams& params, XmlWriter* xml);
+
 // <body name="quad"> at p_W with a free joint. `chase_offset_W` places the chase camera, which
 // follows the vehicle's centre of mass at that world-frame offset [m] and looks at it.
 void WriteVehicleBody(const QuadParams& params, const Vec3& p_W, const Vec3& chase_offset_W,

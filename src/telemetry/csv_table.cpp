@@ -27,7 +27,7 @@ void CsvTable::AddRow(const Eigen::Ref<const Eigen::VectorXd>& values) {
     throw std::invalid_argument("CsvTable: row of " + std::to_string(values.size()) +
                                 " values for " + std::to_string(columns_) + " columns");
   }
-  text_ += FormatVector(values, ",");
+  AppendVector(values, ",", &text_);
   text_ += '\n';
   ++rows_;
 }

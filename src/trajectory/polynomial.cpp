@@ -18,9 +18,13 @@ double FallingFactorial(int k, int r) {
 
 BasisRow Basis(double s, int derivative, double duration) {
   BasisRow row = BasisRow::Zero();
-  const double scale = std::pow(duration, -derivative);
+  // powers by products: this runs several times per simulation step
+  double scale = 1.0;  // duration^-derivative
+  for (int i = 0; i < derivative; ++i) scale /= duration;
+  double power = 1.0;  // s^(k - derivative)
   for (int k = derivative; k < kCoefficients; ++k) {
-    row[k] = FallingFactorial(k, derivative) * std::pow(s, k - derivative) * scale;
+    row[k] = FallingFactorial(k, derivative) * power * scale;
+    power *= s;
   }
   return row;
 }
@@ -38,6 +42,15 @@ PolynomialSegment::PolynomialSegment(Eigen::MatrixXd coefficients, double durati
 Eigen::VectorXd PolynomialSegment::Evaluate(double t, int derivative) const {
   const double s = std::clamp(t / duration_, 0.0, 1.0);
   return coefficients_ * Basis(s, derivative, duration_).transpose();
+}
+
+Vec3 PolynomialSegment::Evaluate3(double t, int derivative) const {
+  if (coefficients_.rows() != 3) throw std::logic_error("PolynomialSegment: not 3-dimensional");
+  const double s = std::clamp(t / duration_, 0.0, 1.0);
+  const BasisRow basis = Basis(s, derivative, duration_);
+  Vec3 value = Vec3::Zero();
+  for (int k = derivative; k < kCoefficients; ++k) value += coefficients_.col(k) * basis[k];
+  return value;
 }
 
 double PolynomialSegment::SnapCost() const {
@@ -77,6 +90,16 @@ Eigen::VectorXd PiecewiseTrajectory::Evaluate(double t, int derivative) const {
     t -= segments_[i].duration();
   }
   return segments_.back().Evaluate(t, derivative);
+}
+
+Vec3 PiecewiseTrajectory::Evaluate3(double t, int derivative) const {
+  if (segments_.empty()) throw std::logic_error("PiecewiseTrajectory: empty");
+  t = std::max(t, 0.0);
+  for (size_t i = 0; i + 1 < segments_.size(); ++i) {
+    if (t < segments_[i].duration()) return segments_[i].Evaluate3(t, derivative);
+    t -= segments_[i].duration();
+  }
+  return segments_.back().Evaluate3(t, derivative);
 }
 
 double PiecewiseTrajectory::SnapCost() const {

@@ -39,6 +39,8 @@ class PolynomialSegment {
 
   // The derivative of the given order at local time t in [0, duration] (clamped).
   Eigen::VectorXd Evaluate(double t, int derivative) const;
+  // The same for a 3-dimensional segment, without allocating (per simulation step).
+  Vec3 Evaluate3(double t, int derivative) const;
 
   // integral over the segment of |snap|^2 [m^2/s^7], exactly.
   double SnapCost() const;
@@ -64,6 +66,8 @@ class PiecewiseTrajectory {
 
   // The derivative at time t [s] from the start; t outside [0, duration] is clamped.
   Eigen::VectorXd Evaluate(double t, int derivative) const;
+  // The same for a 3-dimensional trajectory, without allocating (per simulation step).
+  Vec3 Evaluate3(double t, int derivative) const;
 
   // Sum of the segments' snap costs.
   double SnapCost() const;

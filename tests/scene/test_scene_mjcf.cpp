@@ -81,6 +81,33 @@ TEST_CASE("a generated scene loads in MuJoCo without warnings and matches the ma
   }
   CHECK(colliding == 1);
 
+  // the visuals are one mesh per colour, around the body's origin: MuJoCo computes every
+  // geom's pose each step, so a few meshes rather than dozens of primitives keep a step cheap
+  int visual = 0;
+  const double reach = RotorPosition_B(params, 0).norm() + params.guard_radius + 0.005;  // [m]
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (m->geom_bodyid[g] != body || m->geom_contype[g] != 0) continue;
+    ++visual;
+    CAPTURE(Name(m, mjOBJ_GEOM, g));
+    CHECK(m->geom_type[g] == mjGEOM_MESH);
+    // MuJoCo moves a mesh's vertices to its centroid and principal axes and offsets the geom
+    // by as much; put them back in the body frame
+    const Eigen::Map<const Eigen::Vector3d> pos(m->geom_pos + 3 * g);
+    const Quat quat(m->geom_quat[4 * g], m->geom_quat[4 * g + 1], m->geom_quat[4 * g + 2],
+                    m->geom_quat[4 * g + 3]);
+    const int mesh = m->geom_dataid[g];
+    double farthest = 0.0;
+    for (int v = m->mesh_vertadr[mesh]; v < m->mesh_vertadr[mesh] + m->mesh_vertnum[mesh]; ++v) {
+      const Vec3 local = Eigen::Map<const Eigen::Vector3f>(m->mesh_vert + 3 * v).cast<double>();
+      const Vec3 p_B = pos + quat * local;
+      farthest = std::max(farthest, p_B.head<2>().norm());
+      CHECK(std::abs(p_B.z()) < 0.02);
+    }
+    CHECK(farthest < reach);
+    CHECK(farthest > 0.02);
+  }
+  CHECK(visual == 4);
+
   // mass, inertia, actuators and time step come from QuadParams and SceneOptions
   CHECK(m->body_mass[body] == doctest::Approx(params.mass));
   for (int k = 0; k < 3; ++k)

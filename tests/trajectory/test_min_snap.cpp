@@ -73,6 +73,17 @@ TEST_CASE("the analytic snap cost equals the integrated one") {
   CHECK(NumericSnapCost(trajectory, 400) == doctest::Approx(analytic).epsilon(1e-7));
 }
 
+TEST_CASE("the allocation-free 3-d evaluation equals the general one") {
+  const PiecewiseTrajectory trajectory = SolveMinSnapClosedForm(ZigZag(5));
+  for (double t = -0.5; t <= trajectory.duration() + 0.5; t += 0.0371) {
+    for (int d = kPosition; d <= kSnap; ++d) {
+      CAPTURE(t);
+      CAPTURE(d);
+      CHECK((trajectory.Evaluate3(t, d) - trajectory.Evaluate(t, d)).norm() < 1e-12);
+    }
+  }
+}
+
 TEST_CASE("Ipopt without active inequalities equals the closed form to 1e-6") {
   MinSnapProblem problem = ZigZag(5);
   const PiecewiseTrajectory closed = SolveMinSnapClosedForm(problem);
