@@ -27,6 +27,8 @@ namespace {
 
 std::atomic<bool> stop_requested{false};
 
+constexpr double kCityRouteMargin = 25.0;  // [m] buildings kept in a city flight's scene
+
 struct Interrupted : std::runtime_error {
   Interrupted() : std::runtime_error("interrupted") {}
 };
@@ -73,41 +75,52 @@ int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& ou
   const std::string folder = PrepareOutputFolder(options.out_dir, setup.name);
   const auto file = [&folder](const char* name) { return (fs::path(folder) / name).string(); };
 
-  // The scene and the renderer do not depend on the plan, so they are made on a second thread
-  // while the planner runs: loading the scene's textures into the GL context compiles
-  // llvmpipe's shaders, which takes about as long as planning.
   if (options.quality != "fast" && options.quality != "pretty") {
     throw InputError({"command line", 0}, "--quality", "expected fast or pretty");
   }
   if (!(options.fps > 0 && options.fps <= 240) || !(options.speed > 0)) {
     throw InputError({"command line", 0}, "--fps/--speed", "must be positive (fps at most 240)");
   }
-  const RenderSettings render_settings{
-      options.width, options.height,
-      options.quality == "pretty" ? Quality::kPretty : Quality::kFast};
   const QuadParams vehicle;
   std::unique_ptr<Simulation> sim;
   std::unique_ptr<Renderer> renderer;
-  std::future<void> prepared = std::async(std::launch::async, [&] {
+  const bool city = IsCityScale(setup.map);
+  // the scene (with the boxes it keeps; the others are drawn as scenery) and its renderer
+  const auto prepare = [&](const std::vector<bool>& keep_boxes) {
+    RenderSettings render_settings(options.width, options.height,
+                                   options.quality == "pretty" ? Quality::kPretty : Quality::kFast);
+    // in a city the chase camera stays farther back, to show the streets around the vehicle
+    if (city) render_settings.chase_distance = 6.0;
+    for (size_t i = 0; i < keep_boxes.size(); ++i) {
+      if (keep_boxes[i]) continue;
+      const Box& box = setup.map.boxes[i];
+      render_settings.scenery.push_back({box.extent.Center(), box.extent.HalfSize(), box.rgb});
+    }
     sim = std::make_unique<Simulation>(
-        Simulation::FromXml(SceneMjcfFor(setup), setup.name + " (scene)"));
+        Simulation::FromXml(SceneMjcfFor(setup, keep_boxes), setup.name + " (scene)"));
     try {
       renderer = std::make_unique<Renderer>(sim.get(), render_settings);
     } catch (const std::invalid_argument& e) {
       throw InputError({"command line", 0}, "--size", e.what());
     }
     renderer->ReleaseFromThread();
-  });
+  };
+  // A small map's scene does not depend on the plan, so it is made on a second thread while
+  // the planner runs: loading the scene's textures into the GL context compiles llvmpipe's
+  // shaders, which takes about as long as planning. A city's scene keeps only the buildings
+  // near the route, so it waits for the plan.
+  std::future<void> prepared;
+  if (!city) prepared = std::async(std::launch::async, prepare, std::vector<bool>());
 
   // plan and solve; the preparation is waited for on every way out
   std::optional<PlanOutcome> planned;
   try {
     planned = PlanFlight(setup);
   } catch (...) {
-    prepared.wait();
+    if (prepared.valid()) prepared.wait();
     throw;
   }
-  prepared.get();  // rethrows what the preparation threw
+  if (prepared.valid()) prepared.get();  // rethrows what the preparation threw
   const PlanOutcome& plan = *planned;
   JsonObject summary;
   summary.Add("scenario", setup.name).Add("seed", static_cast<long long>(setup.seed));
@@ -137,6 +150,21 @@ int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& ou
     return finish("no feasible trajectory", kExitNoTrajectory);
   }
   WriteFileAtomically(file("trajectory.csv"), TrajectoryCsv(trajectory.trajectory));
+  if (city) {
+    // MuJoCo 2.2 tests the vehicle against every geom of the world body at each step: 3845
+    // buildings make a step 60 times dearer. The flight is lost (fly-away) once it is
+    // flyaway_distance from its setpoint, so buildings farther than kCityRouteMargin from the
+    // trajectory cannot be reached; they are drawn, not simulated. Clearance is still measured
+    // against every box.
+    static_assert(kCityRouteMargin > 10.0, "keep the margin far beyond the fly-away distance");
+    std::vector<Vec3> route;
+    for (double t = 0; t <= trajectory.trajectory.duration(); t += 0.1) {
+      route.push_back(trajectory.trajectory.Evaluate3(t, kPosition));
+    }
+    route.push_back(trajectory.trajectory.Evaluate3(trajectory.trajectory.duration(), kPosition));
+    route.push_back(VehicleRestPosition(setup.map, vehicle, setup.start));
+    prepare(RouteBoxes(setup.map, route, kCityRouteMargin));
+  }
 
   // fly: the vehicle rests at the start (on the floor when the start is at floor level)
   const Vec3 rest = VehicleRestPosition(setup.map, vehicle, setup.start);

@@ -96,6 +96,8 @@ std::pair<Endpoint, Endpoint> ResolveEndpoints(const Map& map, const CollisionWo
           Resolve(map, world, touching, goal, "goal")};
 }
 
+bool IsCityScale(const Map& map) { return map.bounds.Size().head<2>().maxCoeff() > 200.0; }
+
 PlanOutcome PlanFlight(const FlightSetup& setup) {
   const PlanningSettings& settings = setup.planning;
   if (!setup.goal) throw InputError({setup.map.source, 0}, "goal", "no goal given");
@@ -108,9 +110,8 @@ PlanOutcome PlanFlight(const FlightSetup& setup) {
   const Validity validity{
       [&world](const Vec3& p) { return world.IsPointFree(p); },
       [&world](const Vec3& a, const Vec3& b) { return world.IsSegmentFree(a, b); }};
-  const Vec3 size = setup.map.bounds.Size();
-  const bool lattice = settings.planner == "lattice" ||
-                       (settings.planner == "auto" && size.head<2>().maxCoeff() > 200.0);
+  const bool lattice =
+      settings.planner == "lattice" || (settings.planner == "auto" && IsCityScale(setup.map));
   if (lattice) {
     // the lattice's altitudes count from the map's floor
     LatticeParams params = settings.lattice;

@@ -47,6 +47,10 @@ struct PlanOutcome {
 // unusable endpoints (or a missing goal); a missing path or trajectory is a status.
 PlanOutcome PlanFlight(const FlightSetup& setup);
 
+// A map wider than 200 m (a city): planned on a lattice (with [planner] kind = auto) and flown
+// in a scene that keeps only the buildings near the route.
+bool IsCityScale(const Map& map);
+
 // trajectory.csv: t,x,y,z,vx,vy,vz,ax,ay,az every 1/rate seconds from 0 to the end [s, m, m/s,
 // m/s^2].
 std::string TrajectoryCsv(const PiecewiseTrajectory& trajectory, double rate = 100.0);

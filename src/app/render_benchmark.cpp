@@ -40,7 +40,7 @@ void CompareVideoPath(const std::string& scenario, std::ostream& out, std::ostre
     // the vehicle moves along +y through the frames, seen by the chase camera
     const auto render = [xml, c, video](benchmark::State& state, bool encode) {
       Simulation sim = Simulation::FromXml(xml, "bench");
-      Renderer renderer(&sim, RenderSettings{c.width, c.height, c.quality});
+      Renderer renderer(&sim, RenderSettings(c.width, c.height, c.quality));
       const State start = sim.VehicleState();
       Image image;
       for (auto _ : state) {

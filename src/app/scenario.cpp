@@ -257,9 +257,10 @@ FlightSetup LoadFlightSetup(const std::string& path, const SetupOverrides& overr
   return setup;
 }
 
-std::string SceneMjcfFor(const FlightSetup& setup) {
+std::string SceneMjcfFor(const FlightSetup& setup, const std::vector<bool>& keep_boxes) {
   const QuadParams vehicle;
   SceneOptions options;
+  options.keep_boxes = keep_boxes;
   options.vehicle_position = VehicleRestPosition(setup.map, vehicle, setup.start);
   options.heading_target = setup.goal;
   return BuildSceneMjcf(setup.map, vehicle, options);

@@ -65,6 +65,7 @@ struct SetupOverrides {
 FlightSetup LoadFlightSetup(const std::string& path, const SetupOverrides& overrides);
 
 // The MJCF scene of a set-up: the vehicle rests at the start, the chase camera faces the goal.
-std::string SceneMjcfFor(const FlightSetup& setup);
+// `keep_boxes`: see SceneOptions (empty: every box of the map).
+std::string SceneMjcfFor(const FlightSetup& setup, const std::vector<bool>& keep_boxes = {});
 
 }  // namespace aerobox

@@ -45,7 +45,7 @@ MinSnapProblem RandomProblem(int segments, bool corridors) {
 }  // namespace
 
 void CompareMinSnapSolvers(std::ostream& out, std::ostream& progress) {
-  const int sizes[] = {5, 10, 20, 50};
+  const int sizes[] = {5, 10, 20, 50, 100, 200};
   std::map<int, std::string> infeasible;
   for (const int n : sizes) {
     const MinSnapProblem plain = RandomProblem(n, false);
@@ -65,6 +65,16 @@ void CompareMinSnapSolvers(std::ostream& out, std::ostream& progress) {
     add("closed/" + std::to_string(n), [plain] { return SolveMinSnapClosedForm(plain); });
     add("ipopt/" + std::to_string(n), [plain] { return SolveMinSnapIpopt(plain); });
     add("corridors/" + std::to_string(n), [boxed] { return SolveMinSnapIpopt(boxed); });
+    // the time refinement (20 steps), with the envelope gradient and, up to 100 segments, with
+    // finite differences of the whole solve
+    add("refine/" + std::to_string(n),
+        [plain] { return RefineDurations(plain.waypoints, plain.durations, 20); });
+    if (n <= 100) {
+      add("refine_fd/" + std::to_string(n), [plain] {
+        return RefineDurations(plain.waypoints, plain.durations, 20,
+                               DurationGradient::kFiniteDifferences);
+      });
+    }
   }
   progress << "timing min-snap solvers ..." << std::flush;
   const std::map<std::string, double> medians = RunRegisteredBenchmarks();
@@ -82,6 +92,20 @@ void CompareMinSnapSolvers(std::ostream& out, std::ostream& progress) {
         << std::setprecision(2) << ipopt / closed << " | " << std::setprecision(3) << boxed
         << (infeasible.count(n) ? " (" + infeasible[n] + ")" : std::string()) << " | "
         << std::setprecision(2) << boxed / closed << " |\n";
+  }
+  out << "\nTime refinement, 20 gradient steps with line search:\n\n"
+      << "| segments | envelope gradient [ms] | finite differences [ms] | ratio |\n"
+      << "|---|---|---|---|\n";
+  for (const int n : sizes) {
+    const std::string key = std::to_string(n);
+    const double envelope = medians.at("refine/" + key);
+    out << "| " << n << " | " << std::setprecision(3) << envelope << " | ";
+    if (medians.count("refine_fd/" + key)) {
+      const double differences = medians.at("refine_fd/" + key);
+      out << differences << " | " << std::setprecision(3) << envelope / differences << " |\n";
+    } else {
+      out << "(not run: minutes) | |\n";
+    }
   }
 }
 

@@ -7,6 +7,7 @@
 #include <queue>
 #include <random>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "common/number_format.h"
 #include "planning/path_simplify.h"
@@ -50,7 +51,7 @@ void LatticeParams::Validate() const {
 
 LatticePlanner::LatticePlanner(const Aabb& bounds, const Validity& validity,
                                const LatticeParams& params)
-    : validity_(validity), params_(params) {
+    : validity_(validity), params_(params), bounds_(bounds) {
   params_.Validate();
   const auto begin = std::chrono::steady_clock::now();
   const double low = std::max(bounds.min.z(), params.min_altitude);
@@ -123,6 +124,30 @@ std::vector<int> LatticePlanner::Entries(const Vec3& p) const {
   return entries;
 }
 
+std::vector<LatticePlanner::Way> LatticePlanner::Ways(const Vec3& p) const {
+  std::vector<Way> ways;
+  for (const int c : Entries(p)) ways.push_back({c, false, p, (Point(c) - p).norm()});
+  if (!ways.empty()) return ways;
+  // no lattice point in sight: climb or descend in half-level steps, the nearest first, until a
+  // point on the way sees the lattice (a motion blocked at one height is blocked above it too)
+  bool up = true;
+  bool down = true;
+  for (double h = 0.5 * params_.vertical_spacing; (up || down) && ways.empty();
+       h += 0.5 * params_.vertical_spacing) {
+    for (const double sign : {1.0, -1.0}) {
+      bool& open = sign > 0 ? up : down;
+      if (!open) continue;
+      const Vec3 q = p + sign * h * Vec3::UnitZ();
+      if (q.z() > bounds_.max.z() || q.z() < bounds_.min.z() || !validity_.motion(p, q)) {
+        open = false;
+        continue;
+      }
+      for (const int c : Entries(q)) ways.push_back({c, true, q, h + (Point(c) - q).norm()});
+    }
+  }
+  return ways;
+}
+
 PlanResult LatticePlanner::Plan(const Vec3& start, const Vec3& goal) const {
   const auto begin = std::chrono::steady_clock::now();
   PlanResult result;
@@ -138,19 +163,28 @@ PlanResult LatticePlanner::Plan(const Vec3& start, const Vec3& goal) const {
     result.status = PlanStatus::kSolved;
     result.path = {start, goal};
   } else {
-    const std::vector<int> sources = Entries(start);
-    const std::vector<int> targets = Entries(goal);
+    // per entry cell, the best way in from the start and out to the goal
+    std::unordered_map<int, Way> sources;
+    std::unordered_map<int, Way> targets;
+    for (const Way& way : Ways(start)) {
+      auto [it, added] = sources.emplace(way.cell, way);
+      if (!added && way.length < it->second.length) it->second = way;
+    }
+    for (const Way& way : Ways(goal)) {
+      auto [it, added] = targets.emplace(way.cell, way);
+      if (!added && way.length < it->second.length) it->second = way;
+    }
     // A* over the lattice from every entry near the start to any entry near the goal (the
     // last leg's length is part of the cost, so the best way out is chosen)
     const size_t cells = free_.size();
     std::vector<double> cost(cells, std::numeric_limits<double>::infinity());
     std::vector<int> parent(cells, -1);
     std::vector<double> exit_cost(cells, -1.0);
-    for (const int t : targets) exit_cost[t] = (Point(t) - goal).norm();
+    for (const auto& [t, way] : targets) exit_cost[t] = way.length;
     using Item = std::pair<double, int>;  // (cost + heuristic, cell)
     std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
-    for (const int s : sources) {
-      cost[s] = (Point(s) - start).norm();
+    for (const auto& [s, way] : sources) {
+      cost[s] = way.length;
       open.emplace(cost[s] + (Point(s) - goal).norm(), s);
     }
     int reached = -1;
@@ -183,7 +217,13 @@ PlanResult LatticePlanner::Plan(const Vec3& start, const Vec3& goal) const {
     }
     result.status = PlanStatus::kSolved;
     result.path = {goal};
-    for (int c = reached; c >= 0; c = parent[c]) result.path.push_back(Point(c));
+    if (targets.at(reached).has_via) result.path.push_back(targets.at(reached).via);
+    int first = reached;
+    for (int c = reached; c >= 0; c = parent[c]) {
+      result.path.push_back(Point(c));
+      first = c;
+    }
+    if (sources.at(first).has_via) result.path.push_back(sources.at(first).via);
     result.path.push_back(start);
     std::reverse(result.path.begin(), result.path.end());
   }

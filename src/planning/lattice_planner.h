@@ -37,8 +37,10 @@ class LatticePlanner {
 
   const LatticeStats& stats() const { return stats_; }
 
-  // start and goal join the lattice at the nearest visible points (within four spacings); A*
-  // finds the shortest lattice path; pruning and shortcuts straighten it. Statuses as RRT*'s;
+  // start and goal join the lattice at the nearest visible points (within four spacings); a
+  // point that sees none (a narrow shaft between buildings, with no lattice point inside)
+  // climbs or descends straight until it does. A* finds the shortest lattice path; pruning
+  // and shortcuts straighten it. Statuses as RRT*'s;
   // stats.planning_time is the query's time, stats.iterations the nodes A* expanded.
   PlanResult Plan(const Vec3& start, const Vec3& goal) const;
 
@@ -47,9 +49,20 @@ class LatticePlanner {
   Vec3 Point(int index) const;
   // lattice points near p that a straight motion from p reaches, nearest first
   std::vector<int> Entries(const Vec3& p) const;
+  // A way between a point and the lattice: straight to `cell`, or first straight up or down
+  // to `via` and from there straight to `cell`; `length` [m] is the whole way's.
+  struct Way {
+    int cell = -1;
+    bool has_via = false;
+    Vec3 via = Vec3::Zero();
+    double length = 0.0;
+  };
+  // The ways for p: Entries(p), or else the nearest vertical detour that has entries.
+  std::vector<Way> Ways(const Vec3& p) const;
 
   Validity validity_;
   LatticeParams params_;
+  Aabb bounds_;
   Vec3 origin_;
   int nx_ = 0, ny_ = 0, nz_ = 0;
   std::vector<std::uint8_t> free_;    // per cell

@@ -63,6 +63,19 @@ struct Renderer::Impl {
       AddLine(points[kept[i - 1]], points[kept[i]], rgba, width);
   }
 
+  void AddScenery() {
+    for (const SceneryBox& box : settings.scenery) {
+      if (scene.ngeom >= scene.maxgeom) return;
+      const mjtNum size[3] = {box.half_size.x(), box.half_size.y(), box.half_size.z()};
+      const mjtNum pos[3] = {box.centre.x(), box.centre.y(), box.centre.z()};
+      const float rgba[4] = {static_cast<float>(box.rgb.x()), static_cast<float>(box.rgb.y()),
+                             static_cast<float>(box.rgb.z()), 1.0f};
+      mjv_initGeom(scene.geoms + scene.ngeom, mjGEOM_BOX, size, pos, nullptr, rgba);
+      scene.geoms[scene.ngeom].category = mjCAT_STATIC;
+      ++scene.ngeom;
+    }
+  }
+
   void AddOverlay(const Overlay& overlay) {
     const double scale = std::max(0.05, 0.01 * sim->model()->stat.extent);  // marker size [m]
     static const float kPath[4] = {0.95f, 0.75f, 0.1f, 1.0f};
@@ -132,7 +145,7 @@ struct Renderer::Impl {
         for (int k = 0; k < 3; ++k) camera.lookat[k] = chase_lookat[k];
         camera.azimuth = chase_azimuth;
         camera.elevation = -22.0;
-        camera.distance = 1.4;
+        camera.distance = settings.chase_distance;
         break;
       }
     }
@@ -165,7 +178,8 @@ Renderer::Renderer(Simulation* sim, const RenderSettings& settings)
   mjv_defaultScene(&impl_->scene);
   mjv_defaultOption(&impl_->option);
   mjr_defaultContext(&impl_->gl);
-  mjv_makeScene(m, &impl_->scene, m->ngeom + kOverlayGeoms);
+  mjv_makeScene(m, &impl_->scene,
+                m->ngeom + kOverlayGeoms + static_cast<int>(settings.scenery.size()));
   mjr_makeContext(m, &impl_->gl, mjFONTSCALE_150);
   mjr_setBuffer(mjFB_OFFSCREEN, &impl_->gl);
   const bool pretty = settings.quality == Quality::kPretty;
@@ -198,6 +212,7 @@ void Renderer::Render(const CameraSpec& spec, const Overlay& overlay, Image* out
   mjvCamera camera = r.Camera(spec);
   mjv_updateScene(r.sim->model(), r.sim->mutable_data(), &r.option, nullptr, &camera, mjCAT_ALL,
                   &r.scene);
+  r.AddScenery();
   r.AddOverlay(overlay);
   const mjrRect viewport = {0, 0, r.settings.width, r.settings.height};
   mjr_render(viewport, &r.scene, &r.gl);

@@ -26,10 +26,24 @@ struct CameraSpec {
   std::string name;  // for kNamed: a camera of the scene
 };
 
+// A box drawn in every frame that is not part of the simulated scene: the far buildings of a
+// city flight, left out of MuJoCo's model to keep its steps cheap (SceneOptions::keep_boxes).
+struct SceneryBox {
+  Vec3 centre;     // [m, world]
+  Vec3 half_size;  // [m]
+  Vec3 rgb;        // each in [0, 1]
+};
+
 struct RenderSettings {
+  RenderSettings() = default;
+  RenderSettings(int width_px, int height_px, Quality preset)
+      : width(width_px), height(height_px), quality(preset) {}
+
   int width = 640;  // [pixels], at most the scene's off-screen buffer
   int height = 480;
   Quality quality = Quality::kFast;
+  std::vector<SceneryBox> scenery;  // drawn in every frame, under the overlays
+  double chase_distance = 1.4;      // [m] from the chase camera to the vehicle
 };
 
 struct Overlay {

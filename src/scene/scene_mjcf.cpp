@@ -147,6 +147,35 @@ Vec3 VehicleRestPosition(const Map& map, const QuadParams& params, const Vec3& s
   return p;
 }
 
+std::vector<bool> RouteBoxes(const Map& map, const std::vector<Vec3>& route, double margin) {
+  // the route sampled at most half the margin apart; a box is kept when a sample lies within
+  // the margin of it: every route point is within margin / 4 of a sample, so every box within
+  // 3/4 of the margin of the route is kept for sure
+  std::vector<Vec3> samples;
+  const double spacing = std::max(0.5 * margin, 1e-3);
+  for (size_t i = 0; i < route.size(); ++i) {
+    if (i == 0) {
+      samples.push_back(route[0]);
+      continue;
+    }
+    const Vec3 step = route[i] - route[i - 1];
+    const int pieces = std::max(1, static_cast<int>(std::ceil(step.norm() / spacing)));
+    for (int k = 1; k <= pieces; ++k) samples.push_back(route[i - 1] + step * k / pieces);
+  }
+  std::vector<bool> keep(map.boxes.size(), false);
+  for (size_t b = 0; b < map.boxes.size(); ++b) {
+    const Aabb& box = map.boxes[b].extent;
+    for (const Vec3& p : samples) {
+      const Vec3 outside = (box.min - p).cwiseMax(p - box.max).cwiseMax(0.0);
+      if (outside.norm() <= margin) {
+        keep[b] = true;
+        break;
+      }
+    }
+  }
+  return keep;
+}
+
 std::string BuildSceneMjcf(const Map& map, const QuadParams& params, const SceneOptions& options) {
   params.Validate();
   options.Validate();
@@ -176,7 +205,12 @@ std::string BuildSceneMjcf(const Map& map, const QuadParams& params, const Scene
                     {"size", Vec(Vec3(floor_half.x(), floor_half.y(), 1.0))}});
   WriteBoundsEdges(map, &xml);
   WriteOverviewCamera(map, &xml);
-  for (const Box& box : map.boxes) {
+  if (!options.keep_boxes.empty() && options.keep_boxes.size() != map.boxes.size()) {
+    throw std::invalid_argument("SceneOptions: keep_boxes needs one flag per map box");
+  }
+  for (size_t i = 0; i < map.boxes.size(); ++i) {
+    if (!options.keep_boxes.empty() && !options.keep_boxes[i]) continue;
+    const Box& box = map.boxes[i];
     xml.Leaf("geom", {{"name", box.name},
                       {"type", "box"},
                       {"pos", Vec(box.extent.Center())},

@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "map/map.h"
 #include "vehicle/quad_params.h"
@@ -22,10 +23,18 @@ struct SceneOptions {
   int offscreen_height = 1080;
   // Physics time step [s].
   double timestep = 0.001;
+  // When not empty, one flag per map box: false leaves the box out of the scene, so MuJoCo
+  // neither simulates nor draws it. MuJoCo 2.2 tests the vehicle against every geom of the world
+  // body at each step; a city flight keeps only the buildings near its route (RouteBoxes).
+  std::vector<bool> keep_boxes;
 
   // Throws std::invalid_argument for non-finite positions, non-positive sizes or time step.
   void Validate() const;
 };
+
+// The flags for SceneOptions::keep_boxes: true for the boxes within `margin` [m] of the route
+// (a polyline through the points), false for the rest.
+std::vector<bool> RouteBoxes(const Map& map, const std::vector<Vec3>& route, double margin);
 
 // The vehicle's starting centre for a requested start point [m]: the point itself, raised so
 // that the collision box's bottom is not below the floor (the map's lower z bound). A start on

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <utility>
 
 #include "trajectory/min_snap.h"
 
@@ -24,8 +25,39 @@ std::vector<double> TrapezoidDurations(const std::vector<Vec3>& waypoints, doubl
   return durations;
 }
 
+namespace {
+
+// The snap cost of a segment with the same position, velocity, acceleration and jerk at its two
+// ends as `segment`, lasting `duration` [s].
+double SnapCostWithEnds(const PolynomialSegment& segment, double duration) {
+  Eigen::Matrix<double, kCoefficients, kCoefficients> ends;
+  Eigen::MatrixXd values(kCoefficients, segment.dimension());
+  for (int r = 0; r < kCoefficients / 2; ++r) {
+    ends.row(r) = Basis(0.0, r, duration);
+    ends.row(kCoefficients / 2 + r) = Basis(1.0, r, duration);
+    values.row(r) = segment.Evaluate(0.0, r).transpose();
+    values.row(kCoefficients / 2 + r) = segment.Evaluate(segment.duration(), r).transpose();
+  }
+  const Eigen::MatrixXd coefficients = ends.partialPivLu().solve(values).transpose();
+  return PolynomialSegment(coefficients, duration).SnapCost();
+}
+
+}  // namespace
+
+std::vector<double> SnapCostGradient(const PiecewiseTrajectory& trajectory) {
+  std::vector<double> gradient;
+  for (const PolynomialSegment& segment : trajectory.segments()) {
+    const double h = 1e-5 * segment.duration();  // central differences of one segment's cost
+    gradient.push_back((SnapCostWithEnds(segment, segment.duration() + h) -
+                        SnapCostWithEnds(segment, segment.duration() - h)) /
+                       (2.0 * h));
+  }
+  return gradient;
+}
+
 std::vector<double> RefineDurations(const std::vector<Vec3>& waypoints,
-                                    std::vector<double> durations, int iterations) {
+                                    std::vector<double> durations, int iterations,
+                                    DurationGradient method) {
   const size_t n = durations.size();
   if (n < 2) return durations;
   const std::vector<double> floor_times = [&] {
@@ -33,23 +65,28 @@ std::vector<double> RefineDurations(const std::vector<Vec3>& waypoints,
     for (const double t : durations) f.push_back(0.05 * t);
     return f;
   }();
-  const auto cost = [&waypoints](const std::vector<double>& times) {
+  const auto solve = [&waypoints](const std::vector<double>& times) {
     MinSnapProblem problem;
     problem.waypoints = waypoints;
     problem.durations = times;
-    return SolveMinSnapClosedForm(problem).SnapCost();
+    return SolveMinSnapClosedForm(problem);
   };
-  double current = cost(durations);
+  PiecewiseTrajectory optimum = solve(durations);
+  double current = optimum.SnapCost();
   const double total = std::accumulate(durations.begin(), durations.end(), 0.0);
   double step = 0.1 * total / n;  // [s] of the first move along the normalised gradient
   for (int iteration = 0; iteration < iterations && step > 1e-4 * total / n; ++iteration) {
-    // gradient by forward differences, projected onto "the sum stays the same"
-    std::vector<double> gradient(n);
-    for (size_t i = 0; i < n; ++i) {
-      std::vector<double> moved = durations;
-      const double h = 1e-4 * durations[i];
-      moved[i] += h;
-      gradient[i] = (cost(moved) - current) / h;
+    // the gradient, projected onto "the sum stays the same"
+    std::vector<double> gradient;
+    if (method == DurationGradient::kEnvelope) {
+      gradient = SnapCostGradient(optimum);
+    } else {
+      for (size_t i = 0; i < n; ++i) {
+        std::vector<double> moved = durations;
+        const double h = 1e-4 * durations[i];
+        moved[i] += h;
+        gradient.push_back((solve(moved).SnapCost() - current) / h);
+      }
     }
     const double mean = std::accumulate(gradient.begin(), gradient.end(), 0.0) / n;
     double norm = 0.0;
@@ -67,9 +104,15 @@ std::vector<double> RefineDurations(const std::vector<Vec3>& waypoints,
         trial[i] -= step * gradient[i] / norm;
         valid = valid && trial[i] >= floor_times[i];
       }
-      const double trial_cost = valid ? cost(trial) : current;
-      if (valid && trial_cost < current) {
+      if (!valid) {
+        step *= 0.5;
+        continue;
+      }
+      PiecewiseTrajectory moved = solve(trial);
+      const double trial_cost = moved.SnapCost();
+      if (trial_cost < current) {
         durations = trial;
+        optimum = std::move(moved);
         current = trial_cost;
         step *= 1.5;
         break;

@@ -141,9 +141,7 @@ TEST_CASE("the city: the lattice plans 600-700 m queries that pass the dense re-
     CHECK(plan.trajectory);
   }
   MESSAGE("city: " << solved << " of " << queries << " queries solved");
-  // the lattice misses points in narrow shafts between buildings (see issue 8's note): all
-  // but at most one in twenty must be solved
-  CHECK(solved >= queries - 1);
+  CHECK(solved == queries);
 }
 
 }  // namespace aerobox

@@ -63,4 +63,37 @@ TEST_CASE("lattice planner: collision-free long paths, built once, queried many 
   CHECK(planner.Plan(Vec3(15, 15, 5), Vec3(100, 100, 10)).status == PlanStatus::kStartInvalid);
 }
 
+TEST_CASE("lattice planner: out of a narrow shaft between buildings, where no lattice point is") {
+  // four 40 m towers leave a 4 x 4 m shaft, open above, around x = y = 50; the lattice's points
+  // are 10 m apart, none inside the shaft
+  Map map;
+  map.bounds = {Vec3(0, 0, 0), Vec3(100, 100, 60)};
+  const auto tower = [&map](const Vec3& min, const Vec3& max) {
+    const int n = static_cast<int>(map.boxes.size());
+    map.boxes.push_back({{min, max}, Vec3(0.7, 0.7, 0.7), "tower_" + std::to_string(n), n + 1});
+  };
+  tower(Vec3(33, 33, 0), Vec3(48, 67, 40));  // west
+  tower(Vec3(52, 33, 0), Vec3(67, 67, 40));  // east
+  tower(Vec3(48, 33, 0), Vec3(52, 48, 40));  // south
+  tower(Vec3(48, 52, 0), Vec3(52, 67, 40));  // north
+  const CollisionWorld world(map, CollisionParams());
+  const Validity validity = testing::ValidityOf(world);
+  LatticeParams params;  // 10 m apart, 10-60 m up
+  const LatticePlanner planner(world.free_bounds(), validity, params);
+  const Vec3 shaft(50, 50, 15);
+  const Vec3 away(5, 95, 20);
+  REQUIRE(world.IsPointFree(shaft));
+  for (const auto& [a, b] : {std::pair(shaft, away), std::pair(away, shaft)}) {
+    const PlanResult result = planner.Plan(a, b);
+    REQUIRE(result.status == PlanStatus::kSolved);
+    CHECK(result.path.front() == a);
+    CHECK(result.path.back() == b);
+    CHECK(testing::DenselyFree(map, world.params(), result.path));
+    // the way out of the shaft leads up through its open top, above the towers
+    const Vec3 exit = a == shaft ? result.path[1] : result.path[result.path.size() - 2];
+    CHECK((exit - shaft).head<2>().cwiseAbs().maxCoeff() < 2.0);
+    CHECK(exit.z() > 40.0);
+  }
+}
+
 }  // namespace aerobox

@@ -44,7 +44,7 @@ Eigen::Vector2d Project(const Simulation& sim, const char* camera, const Vec3& p
 
 TEST_CASE("a rendered frame is not blank and shows the vehicle where the camera projects it") {
   Simulation sim = SmallScene(Vec3(1, 1, 1));
-  Renderer renderer(&sim, RenderSettings{320, 240, Quality::kFast});
+  Renderer renderer(&sim, RenderSettings(320, 240, Quality::kFast));
   Image with;
   renderer.Render(CameraSpec{CameraKind::kOverview, ""}, Overlay(), &with);
   REQUIRE(with.width == 320);
@@ -78,14 +78,14 @@ TEST_CASE("a rendered frame is not blank and shows the vehicle where the camera 
 
 TEST_CASE("a size above the scene's off-screen buffer fails with a clear message") {
   Simulation sim = SmallScene(Vec3(1, 1, 1));
-  CHECK_THROWS_WITH_AS(Renderer(&sim, RenderSettings{2560, 1440, Quality::kFast}),
+  CHECK_THROWS_WITH_AS(Renderer(&sim, RenderSettings(2560, 1440, Quality::kFast)),
                        doctest::Contains("does not fit the scene's off-screen buffer 1920x1080"),
                        std::invalid_argument);
 }
 
 TEST_CASE("a PNG reads back with the same pixels") {
   Simulation sim = SmallScene(Vec3(1, 1, 1));
-  Renderer renderer(&sim, RenderSettings{160, 120, Quality::kPretty});
+  Renderer renderer(&sim, RenderSettings(160, 120, Quality::kPretty));
   Image frame;
   renderer.Render(CameraSpec{CameraKind::kChase, ""}, Overlay(), &frame);
   Image back;
@@ -100,7 +100,7 @@ TEST_CASE("an MP4 reads back as H.264 with its size and duration x fps frames") 
   const testing::TempDir dir;
   const std::string path = (dir.path() / "clip.mp4").string();
   Simulation sim = SmallScene(Vec3(1, 1, 1));
-  Renderer renderer(&sim, RenderSettings{320, 240, Quality::kFast});
+  Renderer renderer(&sim, RenderSettings(320, 240, Quality::kFast));
   const int fps = 25;
   const int frames = 50;  // 2 s
   {

@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <numeric>
 
 #include "trajectory/min_snap.h"
 #include "trajectory/time_allocation.h"
@@ -153,6 +154,40 @@ TEST_CASE(
   MESSAGE("durations at 2 m/s, 2 m/s^2: trapezoid " << old_times.duration() << " s, refined "
                                                     << new_times.duration() << " s");
   CHECK(new_times.duration() < old_times.duration());
+}
+
+TEST_CASE("the snap cost's gradient in the durations matches finite differences of the solve") {
+  MinSnapProblem problem = ZigZag(7);
+  // uneven durations, so the gradient is far from zero
+  for (size_t i = 0; i < problem.durations.size(); ++i) problem.durations[i] *= 1.0 + 0.3 * (i % 3);
+  const PiecewiseTrajectory optimum = SolveMinSnapClosedForm(problem);
+  const std::vector<double> gradient = SnapCostGradient(optimum);
+  REQUIRE(gradient.size() == problem.durations.size());
+  for (size_t i = 0; i < gradient.size(); ++i) {
+    CAPTURE(i);
+    const double h = 1e-5 * problem.durations[i];
+    MinSnapProblem longer = problem, shorter = problem;
+    longer.durations[i] += h;
+    shorter.durations[i] -= h;
+    const double numeric =
+        (SolveMinSnapClosedForm(longer).SnapCost() - SolveMinSnapClosedForm(shorter).SnapCost()) /
+        (2.0 * h);
+    CHECK(gradient[i] == doctest::Approx(numeric).epsilon(1e-5));
+    CHECK(gradient[i] < 0.0);  // longer segments, less snap
+  }
+}
+
+TEST_CASE("refined durations keep their sum and lower the cost, also for 150 segments") {
+  for (const int segments : {6, 150}) {
+    CAPTURE(segments);
+    MinSnapProblem problem = ZigZag(segments);
+    const double before = SolveMinSnapClosedForm(problem).SnapCost();
+    const double total = std::accumulate(problem.durations.begin(), problem.durations.end(), 0.0);
+    problem.durations = RefineDurations(problem.waypoints, problem.durations, 20);
+    CHECK(std::accumulate(problem.durations.begin(), problem.durations.end(), 0.0) ==
+          doctest::Approx(total).epsilon(1e-12));
+    CHECK(SolveMinSnapClosedForm(problem).SnapCost() < (segments < 10 ? 0.8 : 0.95) * before);
+  }
 }
 
 TEST_CASE("trapezoid times and the uniform time scale to the limits") {
