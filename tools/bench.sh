@@ -12,4 +12,8 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
 fi
 cmake --build "$build" --parallel "$(nproc)" --target aerobox
 cd "$top"
-exec "$build/aerobox" bench "$@"
+# the city section reads the FCND map when the shared maps sit beside the repository
+city=$top/../shared/maps/fcnd/colliders.csv
+extra=()
+if [ -f "$city" ]; then extra=(--city "$city"); fi
+exec "$build/aerobox" bench "${extra[@]}" "$@"

@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "app/city_benchmark.h"
 #include "app/exit_codes.h"
 #include "app/files.h"
 #include "app/flight_benchmark.h"
@@ -176,7 +177,8 @@ int RunPlan(const FlightSetup& setup, const std::string& out_dir, std::ostream& 
 }
 
 int RunBench(const std::string& sections, const std::string& scenes, const std::string& maps,
-             int seeds, double seconds, std::ostream& out, std::ostream& err) {
+             const std::string& city, int seeds, double seconds, std::ostream& out,
+             std::ostream& err) {
   const auto wanted = [&sections](const char* name) {
     return sections == "all" ||
            ("," + sections + ",").find(std::string(",") + name + ",") != std::string::npos;
@@ -200,6 +202,17 @@ int RunBench(const std::string& sections, const std::string& scenes, const std::
     out << "## Closed loop against bare mj_step on the window scene (medians of 5 repetitions)\n\n";
     CompareClosedLoop(window, out, err);
     out << "\n";
+  }
+  if (wanted("city")) {
+    out << "## City scale: the FCND map, 50 queries 600-700 m apart\n\n";
+    if (city.empty()) {
+      out << "(skipped: give the map with --city FILE, e.g. the FCND colliders.csv)\n\n";
+    } else {
+      const std::string window =
+          (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
+      CityBenchmark(city, window, 50, out, err);
+      out << "\n";
+    }
   }
   if (!wanted("planning")) return kExitReachedGoal;
   std::vector<PlanningProblem> problems;
@@ -272,10 +285,13 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
       "bench", "performance tables: RRT* against OMPL's (when built with AEROBOX_WITH_OMPL)");
   bench
       ->add_option("--sections", bench_sections,
-                   "all, or some of: trajectory,flight,render,planning")
+                   "all, or some of: trajectory,flight,render,city,planning")
       ->capture_default_str();
   bench->add_option("--scenes", bench_scenes, "folder with the scenes")->capture_default_str();
   bench->add_option("--maps", bench_maps, "comma-separated scene names")->capture_default_str();
+  std::string bench_city;
+  bench->add_option("--city", bench_city, "the city map for the city section (FCND CSV)")
+      ->check(CLI::ExistingFile);
   bench->add_option("--seeds", bench_seeds, "runs per planner and map")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
@@ -323,8 +339,8 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   try {
     if (model->parsed()) return RunModel(output, out);
     if (bench->parsed()) {
-      return RunBench(bench_sections, bench_scenes, bench_maps, bench_seeds, bench_seconds, out,
-                      err);
+      return RunBench(bench_sections, bench_scenes, bench_maps, bench_city, bench_seeds,
+                      bench_seconds, out, err);
     }
     SetupOverrides overrides;
     overrides.start = ParsePointOption(start_text, "--start");

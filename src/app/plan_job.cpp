@@ -113,12 +113,7 @@ PlanOutcome PlanFlight(const FlightSetup& setup) {
   const bool lattice =
       settings.planner == "lattice" || (settings.planner == "auto" && IsCityScale(setup.map));
   if (lattice) {
-    // the lattice's altitudes count from the map's floor
-    LatticeParams params = settings.lattice;
-    params.min_altitude += setup.map.bounds.min.z();
-    params.max_altitude += setup.map.bounds.min.z();
-    params.seed = setup.seed;
-    const LatticePlanner planner(world.free_bounds(), validity, params);
+    const LatticePlanner planner(world.free_bounds(), validity, LatticeParamsFor(setup));
     outcome.result = planner.Plan(outcome.start.used, outcome.goal.used);
     outcome.lattice = planner.stats();
   } else {
@@ -126,7 +121,20 @@ PlanOutcome PlanFlight(const FlightSetup& setup) {
         PlanRrtStar(outcome.start.used, outcome.goal.used, world.free_bounds(), validity, rrt);
   }
   if (outcome.result.status != PlanStatus::kSolved) return outcome;
+  outcome.trajectory = TrajectoryAlong(setup, outcome.result.path);
+  return outcome;
+}
 
+LatticeParams LatticeParamsFor(const FlightSetup& setup) {
+  LatticeParams params = setup.planning.lattice;
+  params.min_altitude += setup.map.bounds.min.z();
+  params.max_altitude += setup.map.bounds.min.z();
+  params.seed = setup.seed;
+  return params;
+}
+
+TrajectoryResult TrajectoryAlong(const FlightSetup& setup, const std::vector<Vec3>& path) {
+  const PlanningSettings& settings = setup.planning;
   CollisionParams looser = settings.collision;
   looser.clearance = settings.trajectory_clearance;
   const CollisionWorld trajectory_world(setup.map, looser);
@@ -135,8 +143,7 @@ PlanOutcome PlanFlight(const FlightSetup& setup) {
       [&trajectory_world](const Vec3& a, const Vec3& b) {
         return trajectory_world.IsSegmentFree(a, b);
       }};
-  outcome.trajectory = GenerateTrajectory(outcome.result.path, view, settings.trajectory);
-  return outcome;
+  return GenerateTrajectory(path, view, settings.trajectory);
 }
 
 std::string TrajectoryCsv(const PiecewiseTrajectory& trajectory, double rate) {

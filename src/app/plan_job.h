@@ -47,6 +47,12 @@ struct PlanOutcome {
 // unusable endpoints (or a missing goal); a missing path or trajectory is a status.
 PlanOutcome PlanFlight(const FlightSetup& setup);
 
+// The lattice PlanFlight builds for `setup` (altitudes counted from the map's floor).
+LatticeParams LatticeParamsFor(const FlightSetup& setup);
+
+// PlanFlight's second half: the trajectory along `path`, keeping the trajectory clearance.
+TrajectoryResult TrajectoryAlong(const FlightSetup& setup, const std::vector<Vec3>& path);
+
 // A map wider than 200 m (a city): planned on a lattice (with [planner] kind = auto) and flown
 // in a scene that keeps only the buildings near the route.
 bool IsCityScale(const Map& map);

@@ -63,9 +63,18 @@ struct Renderer::Impl {
       AddLine(points[kept[i - 1]], points[kept[i]], rgba, width);
   }
 
-  void AddScenery() {
+  // The scenery; around the chase camera only what lies within `range` [m] of it (far
+  // buildings are a few pixels each and cost as much to draw as near ones).
+  void AddScenery(const CameraSpec& spec, double range) {
+    const bool near_only = spec.kind == CameraKind::kChase;
     for (const SceneryBox& box : settings.scenery) {
       if (scene.ngeom >= scene.maxgeom) return;
+      if (near_only) {
+        const Vec3 outside = ((box.centre - box.half_size) - chase_lookat)
+                                 .cwiseMax(chase_lookat - (box.centre + box.half_size))
+                                 .cwiseMax(0.0);
+        if (outside.norm() > range) continue;
+      }
       const mjtNum size[3] = {box.half_size.x(), box.half_size.y(), box.half_size.z()};
       const mjtNum pos[3] = {box.centre.x(), box.centre.y(), box.centre.z()};
       const float rgba[4] = {static_cast<float>(box.rgb.x()), static_cast<float>(box.rgb.y()),
@@ -212,7 +221,7 @@ void Renderer::Render(const CameraSpec& spec, const Overlay& overlay, Image* out
   mjvCamera camera = r.Camera(spec);
   mjv_updateScene(r.sim->model(), r.sim->mutable_data(), &r.option, nullptr, &camera, mjCAT_ALL,
                   &r.scene);
-  r.AddScenery();
+  r.AddScenery(spec, r.settings.chase_scenery_range);
   r.AddOverlay(overlay);
   const mjrRect viewport = {0, 0, r.settings.width, r.settings.height};
   mjr_render(viewport, &r.scene, &r.gl);

@@ -42,8 +42,9 @@ struct RenderSettings {
   int width = 640;  // [pixels], at most the scene's off-screen buffer
   int height = 480;
   Quality quality = Quality::kFast;
-  std::vector<SceneryBox> scenery;  // drawn in every frame, under the overlays
-  double chase_distance = 1.4;      // [m] from the chase camera to the vehicle
+  std::vector<SceneryBox> scenery;     // drawn in every frame, under the overlays
+  double chase_distance = 1.4;         // [m] from the chase camera to the vehicle
+  double chase_scenery_range = 300.0;  // [m] the chase camera draws scenery this near
 };
 
 struct Overlay {

@@ -4,6 +4,8 @@
 // tracking error under a bound.
 #include <doctest/doctest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <vector>
 
@@ -51,7 +53,7 @@ Flight Fly(const std::string& input, std::vector<std::string> extra = {}) {
   return flight;
 }
 
-void CheckSuccess(const std::string& input, std::vector<std::string> extra = {}) {
+Flight CheckSuccess(const std::string& input, std::vector<std::string> extra = {}) {
   CAPTURE(input);
   const Flight flight = Fly(input, extra);
   CAPTURE(flight.out);
@@ -65,6 +67,7 @@ void CheckSuccess(const std::string& input, std::vector<std::string> extra = {})
   MESSAGE(input << ": RMS " << SummaryNumber(flight.summary, "tracking_rms_m") << " m, max "
                 << SummaryNumber(flight.summary, "tracking_max_m") << " m, clearance "
                 << SummaryNumber(flight.summary, "min_clearance_m") << " m");
+  return flight;
 }
 
 std::string Scene(const char* name) {
@@ -134,6 +137,21 @@ TEST_CASE("scenario RBE595 map3: the official start has no room for the vehicle'
   CHECK(flight.err.find("start: 0, 3, 2 is within the 0.1 m clearance") != std::string::npos);
   // from 0.5 m into the room, the official goal is reached
   CheckSuccess((maps / "rbe595/map3.txt").string(), {"--start", "0,3,4.5"});
+}
+
+TEST_CASE("scenario the FCND city: a 674 m flight at up to 8 m/s") {
+  AEROBOX_REQUIRE_SHARED_MAPS(maps);
+  // across the city from its south-west corner, 20 m up, to a street 50 m up: the lattice
+  // plans it, the scene keeps the buildings near the route
+  const testing::TempDir dir;
+  const std::filesystem::path scenario = dir.path() / "city.toml";
+  std::ofstream(scenario) << "name = \"city\"\nmap = \"" << (maps / "fcnd/colliders.csv").string()
+                          << "\"\nstart = [-300, -300, 20]\ngoal = [150, 200, 50]\n"
+                          << "[trajectory]\nmax_speed = 8\nmax_accel = 4\n";
+  const Flight flight = CheckSuccess(scenario.string());
+  CHECK(SummaryNumber(flight.summary, "path_length_m") > 600);
+  CHECK(SummaryNumber(flight.summary, "trajectory_max_speed_mps") > 7.9);
+  CHECK(SummaryNumber(flight.summary, "flight_time_s") > 100);
 }
 
 }  // namespace aerobox
