@@ -10,6 +10,7 @@
 #include <system_error>
 
 #include "common/error.h"
+#include "common/fault_injection.h"
 
 namespace aerobox {
 namespace fs = std::filesystem;
@@ -25,6 +26,16 @@ std::string ReadTextFile(const std::string& path) {
   return text.str();
 }
 
+namespace {
+
+// An injected write failure for this file (see common/fault_injection.h).
+bool WriteFails(const std::string& path) {
+  const std::optional<std::string> name = InjectedFault("write");
+  return name && fs::path(path).filename() == *name;
+}
+
+}  // namespace
+
 void WriteFileAtomically(const std::string& path, const std::string& text) {
   const fs::path target(path);
   fs::path temporary = target;
@@ -36,7 +47,7 @@ void WriteFileAtomically(const std::string& path, const std::string& text) {
     }
     out << text;
     out.flush();
-    if (!out) {
+    if (!out || WriteFails(path)) {
       std::error_code ignored;
       fs::remove(temporary, ignored);
       throw InputError({path, 0}, "", "writing failed (disk full?)");
@@ -68,7 +79,7 @@ StreamingFile::~StreamingFile() {
 
 void StreamingFile::Append(const std::string& text) {
   if (file_ == nullptr) throw std::logic_error("StreamingFile: append after commit");
-  if (std::fwrite(text.data(), 1, text.size(), file_) != text.size()) {
+  if (std::fwrite(text.data(), 1, text.size(), file_) != text.size() || WriteFails(path_)) {
     throw InputError({path_, 0}, "", "writing failed (disk full?)");
   }
 }
@@ -90,10 +101,13 @@ void StreamingFile::Commit() {
   }
 }
 
-std::string PrepareOutputFolder(const std::string& requested, const std::string& name) {
+std::string PrepareOutputFolder(const std::string& requested, const std::string& name,
+                                bool* created) {
   const fs::path folder = requested.empty() ? fs::path("renders") / name : fs::path(requested);
   std::error_code ec;
+  const bool existed = fs::exists(folder, ec);
   fs::create_directories(folder, ec);
+  if (created != nullptr) *created = !existed && !ec;
   if (ec || !fs::is_directory(folder)) {
     throw InputError({folder.string(), 0}, "--out",
                      "cannot create the output folder: " + ec.message());

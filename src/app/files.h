@@ -35,6 +35,8 @@ class StreamingFile {
 
 // The output folder: `requested`, or renders/<name>/ when it is empty; created, and proven
 // writable (a probe file is written and removed) before any work starts. Throws InputError.
-std::string PrepareOutputFolder(const std::string& requested, const std::string& name);
+// `created`, when given, tells whether this call made the folder.
+std::string PrepareOutputFolder(const std::string& requested, const std::string& name,
+                                bool* created = nullptr);
 
 }  // namespace aerobox

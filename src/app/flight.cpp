@@ -4,6 +4,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "common/fault_injection.h"
+#include "common/number_format.h"
 #include "vehicle/model_names.h"
 
 namespace aerobox {
@@ -63,6 +65,12 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
   double squared_error_sum = 0.0;
   long samples = 0;
 
+  // an injected fault (common/fault_injection.h): the setpoint turns NaN from this time on
+  double nan_from = std::numeric_limits<double>::infinity();
+  if (const std::optional<std::string> at = InjectedFault("nonfinite")) {
+    if (!ParseNumber(*at, &nan_from)) nan_from = 0.0;
+  }
+
   const double t0 = sim->time();
   while (true) {
     const double t = sim->time() - t0;
@@ -83,6 +91,7 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
       yaw = std::atan2(setpoint.v_W.y(), setpoint.v_W.x());
     }
     setpoint.yaw = yaw;
+    if (t >= nan_from) setpoint.p_W.x() = std::numeric_limits<double>::quiet_NaN();
 
     CascadeOutput control;
     if (!cascade.Update(setpoint, state, &control)) {

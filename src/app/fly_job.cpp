@@ -70,9 +70,10 @@ void AddTelemetryRow(const TelemetrySample& s, CsvTable* table) {
   table->AddRow(row);
 }
 
-int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& out,
-           std::ostream& err) {
-  const std::string folder = PrepareOutputFolder(options.out_dir, setup.name);
+namespace {
+
+int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOptions& options,
+            std::ostream& out, std::ostream& err) {
   const auto file = [&folder](const char* name) { return (fs::path(folder) / name).string(); };
 
   if (options.quality != "fast" && options.quality != "pretty") {
@@ -309,6 +310,22 @@ int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& ou
   return finish(
       flight.status == FlightStatus::kReachedGoal ? "reached goal" : ToString(flight.status),
       flight.status == FlightStatus::kReachedGoal ? kExitReachedGoal : kExitFlightFailed);
+}
+
+}  // namespace
+
+int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& out,
+           std::ostream& err) {
+  bool created = false;
+  const std::string folder = PrepareOutputFolder(options.out_dir, setup.name, &created);
+  try {
+    return FlyInto(folder, setup, options, out, err);
+  } catch (const InputError&) {
+    // bad input leaves nothing behind: not even the folder this run made (if still empty)
+    std::error_code ec;
+    if (created && fs::is_empty(folder, ec)) fs::remove(folder, ec);
+    throw;
+  }
 }
 
 }  // namespace aerobox

@@ -40,8 +40,8 @@ CollisionWorld Touching(const Map& map, const CollisionWorld& world) {
 }
 
 Endpoint Resolve(const Map& map, const CollisionWorld& world, const CollisionWorld& touching,
-                 const Vec3& p, const std::string& what) {
-  const SourceLocation where{map.source, 0};
+                 const Vec3& p, const std::string& what, SourceLocation where) {
+  if (where.file.empty()) where = {map.source, 0};
   if (!map.bounds.Contains(p)) {
     throw InputError(where, what, FormatVector(p, ", ") + " lies outside the map bounds");
   }
@@ -86,14 +86,16 @@ Endpoint Resolve(const Map& map, const CollisionWorld& world, const CollisionWor
 
 Endpoint ResolveEndpoint(const Map& map, const CollisionWorld& world, const Vec3& p,
                          const std::string& what) {
-  return Resolve(map, world, Touching(map, world), p, what);
+  return Resolve(map, world, Touching(map, world), p, what, {});
 }
 
 std::pair<Endpoint, Endpoint> ResolveEndpoints(const Map& map, const CollisionWorld& world,
-                                               const Vec3& start, const Vec3& goal) {
+                                               const Vec3& start, const Vec3& goal,
+                                               const SourceLocation& start_where,
+                                               const SourceLocation& goal_where) {
   const CollisionWorld touching = Touching(map, world);
-  return {Resolve(map, world, touching, start, "start"),
-          Resolve(map, world, touching, goal, "goal")};
+  return {Resolve(map, world, touching, start, "start", start_where),
+          Resolve(map, world, touching, goal, "goal", goal_where)};
 }
 
 bool IsCityScale(const Map& map) { return map.bounds.Size().head<2>().maxCoeff() > 200.0; }
@@ -103,8 +105,8 @@ PlanOutcome PlanFlight(const FlightSetup& setup) {
   if (!setup.goal) throw InputError({setup.map.source, 0}, "goal", "no goal given");
   const CollisionWorld world(setup.map, settings.collision);
   PlanOutcome outcome;
-  std::tie(outcome.start, outcome.goal) =
-      ResolveEndpoints(setup.map, world, setup.start, *setup.goal);
+  std::tie(outcome.start, outcome.goal) = ResolveEndpoints(
+      setup.map, world, setup.start, *setup.goal, setup.start_where, setup.goal_where);
   RrtStarParams rrt = settings.rrt;
   rrt.seed = setup.seed;
   const Validity validity{

@@ -28,9 +28,12 @@ struct Endpoint {
 Endpoint ResolveEndpoint(const Map& map, const CollisionWorld& world, const Vec3& p,
                          const std::string& what);
 
-// Start and goal at once, sharing the clearance-free world both checks need.
+// Start and goal at once, sharing the clearance-free world both checks need. A point outside the
+// bounds is reported at `*_where` (where it was given; default: the map file).
 std::pair<Endpoint, Endpoint> ResolveEndpoints(const Map& map, const CollisionWorld& world,
-                                               const Vec3& start, const Vec3& goal);
+                                               const Vec3& start, const Vec3& goal,
+                                               const SourceLocation& start_where = {},
+                                               const SourceLocation& goal_where = {});
 
 struct PlanOutcome {
   Endpoint start;

@@ -122,13 +122,19 @@ void ReadTrajectory(const toml::table& table, const std::string& file, PlanningS
 }
 
 // The first candidate that is given; its origin goes to `origin`.
-std::optional<Vec3> FirstGiven(
-    std::initializer_list<std::pair<std::optional<Vec3>, const char*>> candidates,
-    std::string* origin) {
-  for (const auto& [point, name] : candidates) {
-    if (point) {
-      *origin = name;
-      return point;
+struct Candidate {
+  std::optional<Vec3> point;
+  const char* origin;
+  SourceLocation where;
+};
+
+std::optional<Vec3> FirstGiven(std::initializer_list<Candidate> candidates, std::string* origin,
+                               SourceLocation* where) {
+  for (const Candidate& candidate : candidates) {
+    if (candidate.point) {
+      *origin = candidate.origin;
+      *where = candidate.where;
+      return candidate.point;
     }
   }
   return std::nullopt;
@@ -164,10 +170,13 @@ Scenario ReadScenario(std::istream& in, const std::string& file) {
       const std::optional<std::string> value = node.value<std::string>();
       if (!value || value->empty()) throw InputError(where, name, "expected a file name");
       scenario.map_path = (fs::path(file).parent_path() / *value).lexically_normal().string();
+      scenario.map_line = LineOf(node);
     } else if (name == "start") {
       scenario.start = ReadPoint(node, file, "start");
+      scenario.start_line = LineOf(node);
     } else if (name == "goal") {
       scenario.goal = ReadPoint(node, file, "goal");
+      scenario.goal_line = LineOf(node);
     } else if (name == "seed") {
       const std::optional<int64_t> value = node.value<int64_t>();
       if (!value || *value < 0) throw InputError(where, name, "expected a non-negative integer");
@@ -193,7 +202,8 @@ Scenario ReadScenario(std::istream& in, const std::string& file) {
                        "[trajectory], [controller] or [render])");
     }
   }
-  if (scenario.map_path.empty()) throw InputError({file, 0}, "map", "missing key 'map'");
+  // a missing key belongs to the top-level table, which starts at line 1
+  if (scenario.map_path.empty()) throw InputError({file, 1}, "map", "missing key 'map'");
   return scenario;
 }
 
@@ -207,7 +217,14 @@ FlightSetup LoadFlightSetup(const std::string& path, const SetupOverrides& overr
     map_path = scenario->map_path;
   }
 
-  const std::string map_text = ReadTextFile(map_path);
+  std::string map_text;
+  try {
+    map_text = ReadTextFile(map_path);
+  } catch (const InputError& e) {
+    if (!scenario) throw;
+    // the scenario's line that names the map, rather than the file that is not there
+    throw InputError({path, scenario->map_line}, "map", e.what());
+  }
   std::istringstream map_stream(map_text);
   setup.map_format = DetectMapFormat(map_path, map_text.substr(0, 64));
   setup.map = ReadMap(map_stream, map_path, setup.map_format);
@@ -230,17 +247,24 @@ FlightSetup LoadFlightSetup(const std::string& path, const SetupOverrides& overr
     if (!side_file) return std::nullopt;
     return start ? side_file->start : side_file->goal;
   };
+  const SourceLocation command_line{"command line", 0};
+  const SourceLocation in_map{map_path, setup.map.start_goal_line};
+  const SourceLocation in_side_file{side_path.string(), 0};
   const std::optional<Vec3> start =
-      FirstGiven({{overrides.start, "command line"},
-                  {scenario ? scenario->start : std::nullopt, "scenario"},
-                  {setup.map.start, "map file"},
-                  {from_side_file(true), "start/goal file"}},
-                 &setup.start_origin);
-  setup.goal = FirstGiven({{overrides.goal, "command line"},
-                           {scenario ? scenario->goal : std::nullopt, "scenario"},
-                           {setup.map.goal, "map file"},
-                           {from_side_file(false), "start/goal file"}},
-                          &setup.goal_origin);
+      FirstGiven({{overrides.start, "command line", command_line},
+                  {scenario ? scenario->start : std::nullopt,
+                   "scenario",
+                   {path, scenario ? scenario->start_line : 0}},
+                  {setup.map.start, "map file", in_map},
+                  {from_side_file(true), "start/goal file", in_side_file}},
+                 &setup.start_origin, &setup.start_where);
+  setup.goal = FirstGiven({{overrides.goal, "command line", command_line},
+                           {scenario ? scenario->goal : std::nullopt,
+                            "scenario",
+                            {path, scenario ? scenario->goal_line : 0}},
+                           {setup.map.goal, "map file", in_map},
+                           {from_side_file(false), "start/goal file", in_side_file}},
+                          &setup.goal_origin, &setup.goal_where);
   if (start) {
     setup.start = *start;
   } else {
@@ -253,6 +277,7 @@ FlightSetup LoadFlightSetup(const std::string& path, const SetupOverrides& overr
     }
     setup.start = *fallback;
     setup.start_origin = "default";
+    setup.start_where = {map_path, 0};
   }
   return setup;
 }

@@ -30,8 +30,11 @@ struct Scenario {
   std::string name;
   std::string file;      // the scenario file, for messages
   std::string map_path;  // resolved against the scenario file's folder
+  int map_line = 0;      // where the keys were given, for messages
   std::optional<Vec3> start;
+  int start_line = 0;
   std::optional<Vec3> goal;
+  int goal_line = 0;
   std::uint64_t seed = 1;
   PlanningSettings planning;
 };
@@ -46,8 +49,10 @@ struct FlightSetup {
   MapFormat map_format = MapFormat::kTxt;
   Vec3 start = Vec3::Zero();
   std::string start_origin;  // "command line", "scenario", "map file", "start/goal file", "default"
+  SourceLocation start_where;  // the file and line that gave it, for messages
   std::optional<Vec3> goal;
   std::string goal_origin;
+  SourceLocation goal_where;
   std::uint64_t seed = 1;
   PlanningSettings planning;
 };

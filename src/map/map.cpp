@@ -14,6 +14,11 @@ void CheckExtent(const Aabb& box, const SourceLocation& where, const std::string
   if (!box.min.allFinite() || !box.max.allFinite()) {
     throw InputError(where, field, "extents must be finite numbers");
   }
+  if (box.min.cwiseAbs().maxCoeff() > kMaxCoordinate ||
+      box.max.cwiseAbs().maxCoeff() > kMaxCoordinate) {
+    throw InputError(where, field,
+                     "coordinates must lie within +-" + FormatNumber(kMaxCoordinate) + " m");
+  }
   for (int axis = 0; axis < 3; ++axis) {
     if (!(box.min[axis] < box.max[axis])) {
       throw InputError(where, field,
@@ -27,7 +32,8 @@ void CheckExtent(const Aabb& box, const SourceLocation& where, const std::string
 }  // namespace
 
 void ValidateMap(const Map& map) {
-  CheckExtent(map.bounds, {map.source, map.bounds_line}, "boundary");
+  // the boxes first: a map whose bounds are derived from its boxes (CSV) is reported at the box
+  // that made them bad
   std::set<std::string> names;
   for (const Box& box : map.boxes) {
     const SourceLocation where{map.source, box.line};
@@ -39,9 +45,14 @@ void ValidateMap(const Map& map) {
       throw InputError(where, box.name, "box name is used twice");
     }
   }
+  CheckExtent(map.bounds, {map.source, map.bounds_line}, "boundary");
   for (const auto& [point, field] : {std::pair{map.start, "start"}, std::pair{map.goal, "goal"}}) {
     if (point && !point->allFinite()) {
       throw InputError({map.source, map.start_goal_line}, field, "must be three finite numbers");
+    }
+    if (point && point->cwiseAbs().maxCoeff() > kMaxCoordinate) {
+      throw InputError({map.source, map.start_goal_line}, field,
+                       "coordinates must lie within +-" + FormatNumber(kMaxCoordinate) + " m");
     }
   }
 }

@@ -27,8 +27,12 @@ struct Map {
   int start_goal_line = 0;    // line where start/goal were given (0: unknown)
 };
 
-// Checks the invariants the readers promise (finite numbers, min < max, colours in [0, 1],
-// unique names); throws InputError naming the offending box's line.
+// Largest coordinate a map may use [m]: a thousand kilometres. Beyond it, a number is a typo
+// or garbage, and the planners' arithmetic would lose all precision.
+inline constexpr double kMaxCoordinate = 1e6;
+
+// Checks the invariants the readers promise (finite numbers within kMaxCoordinate, min < max,
+// colours in [0, 1], unique names); throws InputError naming the offending box's line.
 void ValidateMap(const Map& map);
 
 // Indices of boxes that reach outside the bounds. They are kept (real maps have them, e.g. a

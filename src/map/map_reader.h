@@ -29,7 +29,8 @@ MapFormat DetectMapFormat(std::string_view file_name, std::string_view head);
 Map ReadTxtMap(std::istream& in, const std::string& file);
 
 // JSON with interleaved extents [xmin, xmax, ymin, ymax, zmin, zmax]; "color" (0-1) optional;
-// "start" and "goal" optional; other keys (resolution, margin, ...) ignored. The non-standard
+// "start" and "goal" optional; flightsim's other keys (resolution, margin, timeout,
+// expected_path_length, algorithms) ignored, any other key an error. The non-standard
 // tokens Infinity, -Infinity and NaN are read (and rejected where a finite number is needed).
 Map ReadJsonMap(std::istream& in, const std::string& file);
 

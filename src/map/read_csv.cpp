@@ -38,7 +38,7 @@ Map ReadCsvMap(std::istream& in, const std::string& file) {
   const std::string text = map_detail::ReadAll(in, file);
   const std::vector<map_detail::Line> lines = map_detail::SplitLines(text);
   if (text.find_first_not_of(" \t\r\n") == std::string::npos) {
-    throw InputError({file, 0}, "", "the map is empty");
+    throw InputError({file, 1}, "", "the map is empty");
   }
   CheckOriginLine(lines[0], file);
   if (lines.size() < 2) throw InputError({file, 1}, "header", "the column header is missing");

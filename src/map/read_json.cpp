@@ -1,4 +1,5 @@
 #include <cmath>
+#include <initializer_list>
 
 #include "map/json_document.h"
 #include "map/map_reader.h"
@@ -61,15 +62,34 @@ void RequireObject(const JsonValue& value, const std::string& file, const std::s
   }
 }
 
+// Keys other than `known` are errors: a misspelt key would otherwise be ignored in silence.
+void RejectUnknownKeys(const JsonValue& object, std::initializer_list<const char*> known,
+                       const std::string& file, const std::string& field) {
+  for (const auto& [key, value] : object.members) {
+    bool found = false;
+    for (const char* k : known) found = found || key == k;
+    if (found) continue;
+    std::string expected;
+    for (const char* k : known) expected += (expected.empty() ? "" : ", ") + std::string(k);
+    throw InputError({file, value.line}, field.empty() ? key : field + "." + key,
+                     "unknown key (expected " + expected + ")");
+  }
+}
+
 }  // namespace
 
 Map ReadJsonMap(std::istream& in, const std::string& file) {
   const std::string text = map_detail::ReadAll(in, file);
   if (text.find_first_not_of(" \t\r\n") == std::string::npos) {
-    throw InputError({file, 0}, "", "the map is empty");
+    throw InputError({file, 1}, "", "the map is empty");
   }
   const JsonValue root = map_detail::ParseJson(text, file);
   RequireObject(root, file, "document");
+  // flightsim's own keys besides the map (margin, resolution, ...) are accepted and ignored
+  RejectUnknownKeys(root,
+                    {"bounds", "blocks", "start", "goal", "margin", "resolution", "timeout",
+                     "expected_path_length", "algorithms"},
+                    file, "");
 
   Map map;
   map.source = file;
@@ -88,6 +108,7 @@ Map ReadJsonMap(std::istream& in, const std::string& file) {
     for (const JsonValue& block : blocks->items) {
       const std::string field = "blocks[" + std::to_string(map.boxes.size()) + "]";
       RequireObject(block, file, field);
+      RejectUnknownKeys(block, {"extents", "color"}, file, field);
       Box box;
       box.extent =
           InterleavedExtents(Require(block, "extents", file, field), file, field + ".extents");

@@ -65,9 +65,10 @@ Map ReadTxtMap(std::istream& in, const std::string& file) {
     }
   }
   if (text.find_first_not_of(" \t\r\n\v\f") == std::string::npos) {
-    throw InputError({file, 0}, "", "the map is empty");
+    throw InputError({file, 1}, "", "the map is empty");
   }
-  if (map.bounds_line == 0) throw InputError({file, 0}, "boundary", "no 'boundary' line");
+  if (map.bounds_line == 0)
+    throw InputError({file, 1}, "boundary", "no 'boundary' line in the file");
   return map;
 }
 

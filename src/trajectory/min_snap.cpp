@@ -9,6 +9,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/fault_injection.h"
+
 namespace aerobox {
 namespace {
 
@@ -460,8 +462,11 @@ MinSnapSolution SolveMinSnapIpopt(const MinSnapProblem& problem, const IpoptSett
     }
     ready = true;
   }
+  // an injected fault (common/fault_injection.h): no iteration allowed, from a start that is
+  // not optimal, so that Ipopt stops with its own failure status
+  const bool fail = InjectedFault("ipopt").has_value();
   app->Options()->SetNumericValue("tol", settings.tolerance);
-  app->Options()->SetIntegerValue("max_iter", settings.max_iterations);
+  app->Options()->SetIntegerValue("max_iter", fail ? 0 : settings.max_iterations);
 
   // constraint generation: solve with the corridor samples that the current solution
   // violates, add the ones the new solution violates, repeat. Each problem relaxes the full
@@ -501,6 +506,7 @@ MinSnapSolution SolveMinSnapIpopt(const MinSnapProblem& problem, const IpoptSett
       result.trajectory = ToTrajectory(problem, qp, x);
       return result;
     }
+    if (fail) x.setZero();
     Ipopt::SmartPtr<MinSnapNlp> nlp = new MinSnapNlp(qp, x, active);
     const Ipopt::ApplicationReturnStatus status = app->OptimizeTNLP(nlp);
     result.message = Describe(status);

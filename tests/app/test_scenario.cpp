@@ -71,7 +71,7 @@ TEST_CASE("scenario files: errors name the file, the line and the key") {
         "scenes/x/scenario.toml:3: planner.clearance: expected a number from 0 to 10");
   CHECK(ScenarioError("map = \"m.txt\"\n[planner]\ninformed = 1\n") ==
         "scenes/x/scenario.toml:3: planner.informed: expected true or false");
-  CHECK(ScenarioError("name = \"a\"\n") == "scenes/x/scenario.toml: map: missing key 'map'");
+  CHECK(ScenarioError("name = \"a\"\n") == "scenes/x/scenario.toml:1: map: missing key 'map'");
   CHECK(ScenarioError("map = \"m.txt\"\n\nstart = [1, 2]\n") ==
         "scenes/x/scenario.toml:3: start: expected an array of 3 numbers [x, y, z] in metres");
   CHECK(ScenarioError("map = \"m.txt\"\ngoal = [1, \"2\", 3]\n") ==

@@ -34,6 +34,15 @@ TEST_CASE("ValidateMap rejects what no reader should produce") {
   map.boxes.back().rgb = Vec3(2, 0, 0);
   CHECK_THROWS_WITH_AS(ValidateMap(map), "m.txt:4: b: colour components must lie in [0, 1]",
                        InputError);
+  map.boxes.back().rgb = Vec3(0, 0, 1);
+  map.boxes.back().extent.max.x() = 2e6;  // a typo or garbage, not a map
+  CHECK_THROWS_WITH_AS(ValidateMap(map), "m.txt:4: b: coordinates must lie within +-1e+06 m",
+                       InputError);
+}
+
+TEST_CASE("error messages escape control characters and bytes that are not UTF-8") {
+  const InputError error({"m.txt", 2}, "key\x01", std::string("bad '\0\xff' caf\xc3\xa9", 14));
+  CHECK(std::string(error.what()) == "m.txt:2: key\\x01: bad '\\x00\\xff' caf\xc3\xa9");
 }
 
 }  // namespace aerobox

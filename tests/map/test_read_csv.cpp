@@ -30,7 +30,7 @@ TEST_CASE("CSV: centre and half-size rows and bounds are the union of the boxes"
 }
 
 TEST_CASE("CSV: bad input names the file, the line and the field") {
-  CHECK(CsvError("") == "city/colliders.csv: the map is empty");
+  CHECK(CsvError("") == "city/colliders.csv:1: the map is empty");
   CHECK(CsvError("lat 1, lon 2\n").rfind("city/colliders.csv:1: origin:", 0) == 0);
   CHECK(CsvError("lat0 x, lon0 2\n") == "city/colliders.csv:1: lat0: 'x' is not a number");
   CHECK(CsvError("lat0 1, lon0 2\n") ==

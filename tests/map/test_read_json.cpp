@@ -43,7 +43,7 @@ TEST_CASE("JSON: interleaved extents, optional colour, start and goal") {
 TEST_CASE("JSON: the Infinity token, no blocks, CRLF") {
   const Map map = Json(
       "{\r\n \"bounds\": {\"extents\": [0, 2.0, 0, 4.0, 0, 1.0]},\r\n"
-      " \"expected_path_length\": Infinity,\r\n \"other\": -Infinity, \"n\": NaN\r\n}");
+      " \"expected_path_length\": Infinity,\r\n \"margin\": -Infinity, \"timeout\": NaN\r\n}");
   CHECK(map.boxes.empty());
   CHECK(map.bounds_line == 2);
 }
@@ -55,7 +55,13 @@ TEST_CASE("JSON: colours 0-255 are accepted like the TXT format's") {
 }
 
 TEST_CASE("JSON: bad input names the file, the line and the field") {
-  CHECK(JsonError("") == "worlds/test.json: the map is empty");
+  CHECK(JsonError("") == "worlds/test.json:1: the map is empty");
+  CHECK(JsonError("{\"bounds\": {\"extents\": [0,1,0,1,0,1]},\n\"blocks\": [\n{\"extents\": "
+                  "[0,1,0,1,0,1], \"colour\": [1, 0, 0]}]}") ==
+        "worlds/test.json:3: blocks[0].colour: unknown key (expected extents, color)");
+  CHECK(JsonError("{\"bounds\": {\"extents\": [0,1,0,1,0,1]},\n\"blokcs\": []}") ==
+        "worlds/test.json:2: blokcs: unknown key (expected bounds, blocks, start, goal, margin, "
+        "resolution, timeout, expected_path_length, algorithms)");
   CHECK(JsonError("{\n\"bounds\": {\"extents\": [0,1,0,1,0,1]},\n\"blocks\": [\n{\"extents\": "
                   "[0,1,0,1,0]}]}") ==
         "worlds/test.json:4: blocks[0].extents: expected 6 numbers, found 5");

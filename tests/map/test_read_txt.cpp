@@ -100,9 +100,11 @@ TEST_CASE("TXT: bad input names the file, the line and the field") {
         "maps/test.txt:4: block_0: xmin 3 must be less than xmax 2");
   CHECK(TxtError("block 1 1 1 2 2 2\nboundary 0 0 6 10 10 0\n") ==
         "maps/test.txt:2: boundary: zmin 6 must be less than zmax 0");
-  CHECK(TxtError("") == "maps/test.txt: the map is empty");
-  CHECK(TxtError("\r\n  \n# only a comment\n") == "maps/test.txt: boundary: no 'boundary' line");
-  CHECK(TxtError("block 1 1 1 2 2 2\n") == "maps/test.txt: boundary: no 'boundary' line");
+  CHECK(TxtError("") == "maps/test.txt:1: the map is empty");
+  CHECK(TxtError("\r\n  \n# only a comment\n") ==
+        "maps/test.txt:1: boundary: no 'boundary' line in the file");
+  CHECK(TxtError("block 1 1 1 2 2 2\n") ==
+        "maps/test.txt:1: boundary: no 'boundary' line in the file");
   CHECK(TxtError("boundary 0 0 0 1 1 1\nboundary 0 0 0 1 1 1\n") ==
         "maps/test.txt:2: boundary: given twice (first at line 1)");
   CHECK(TxtError("boundary 0 0 0 1 1 1\nblock 0 0 0 1 1 1 300 0 0\n")
