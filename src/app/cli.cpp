@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "app/city_benchmark.h"
+#include "app/compare_job.h"
 #include "app/exit_codes.h"
 #include "app/files.h"
 #include "app/flight_benchmark.h"
@@ -319,12 +320,29 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   fly->add_option("--quality", fly_options.quality, "fast or pretty")->capture_default_str();
   bool quiet = false;
   fly->add_flag("--quiet", quiet, "no progress line");
+  fly->add_flag("--show-tree", fly_options.show_tree,
+                "draw the RRT* tree: growing in the video's first 3 s, whole in overview.png");
+  std::string trajectory_method;
+  fly->add_option("--trajectory", trajectory_method,
+                  "minsnap (default), or a baseline on its waypoints and times: quintic, cubic, "
+                  "septic-full");
   fly->add_option("--frames-every", fly_options.frames_every,
                   "also write frames/frame_NNNNNN.png every this many seconds of flight");
 
   CLI::App* check = app.add_subcommand(
       "check", "validate a map or scenario and print a summary (exit 2 when it is bad)");
   add_input(check);
+
+  std::vector<std::string> compare_inputs = {
+      "scenes/window/scenario.toml", "scenes/maze/scenario.toml", "scenes/forest/scenario.toml",
+      "scenes/over_under/scenario.toml"};
+  std::string compare_out = "renders/compare";
+  CLI::App* compare = app.add_subcommand(
+      "compare",
+      "fly min-snap and the baselines (septic-full, quintic, cubic) on the same waypoints and "
+      "times, print one table");
+  compare->add_option("inputs", compare_inputs, "scenarios or maps")->capture_default_str();
+  compare->add_option("--out", compare_out, "folder for the profile CSVs")->capture_default_str();
 
   CLI::App* model = app.add_subcommand("model", "write the vehicle's MJCF model alone");
   model->add_option("-o,--output", output, "output file (default: standard output)");
@@ -338,6 +356,7 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
 
   try {
     if (model->parsed()) return RunModel(output, out);
+    if (compare->parsed()) return RunCompare(compare_inputs, compare_out, out, err);
     if (bench->parsed()) {
       return RunBench(bench_sections, bench_scenes, bench_maps, bench_city, bench_seeds,
                       bench_seconds, out, err);
@@ -346,7 +365,15 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     overrides.start = ParsePointOption(start_text, "--start");
     overrides.goal = ParsePointOption(goal_text, "--goal");
     if (seed_given) overrides.seed = seed;
-    const FlightSetup setup = LoadFlightSetup(input, overrides);
+    FlightSetup setup = LoadFlightSetup(input, overrides);
+    if (!trajectory_method.empty()) {
+      const std::optional<TrajectoryMethod> method = ParseTrajectoryMethod(trajectory_method);
+      if (!method) {
+        throw InputError({"command line", 0}, "--trajectory",
+                         "expected minsnap, quintic, cubic or septic-full");
+      }
+      setup.planning.trajectory_method = *method;
+    }
     if (scene->parsed()) return RunScene(setup, output, out);
     if (plan->parsed()) return RunPlan(setup, out_dir, out);
     if (fly->parsed()) {

@@ -6,6 +6,7 @@
 
 #include "common/fault_injection.h"
 #include "common/number_format.h"
+#include "scene/scene_mjcf.h"
 #include "vehicle/model_names.h"
 
 namespace aerobox {
@@ -38,6 +39,15 @@ Reference ReferenceOf(const PiecewiseTrajectory& trajectory) {
   return {trajectory.duration(), [trajectory](double t, int derivative) -> Vec3 {
             return trajectory.Evaluate3(t, derivative);
           }};
+}
+
+void PlaceVehicleAtStart(const Map& map, const Vec3& requested, const Vec3& used, Simulation* sim) {
+  const QuadParams vehicle;
+  const Vec3 rest = VehicleRestPosition(map, vehicle, requested);
+  if (rest.z() > map.bounds.min.z() + 0.5 * vehicle.collision_size.z() + 1e-9) {
+    sim->SetVehicleState(State{used, Vec3::Zero(), Quat::Identity(), Vec3::Zero()});
+    sim->SetRotorThrusts(Vec4::Constant(vehicle.HoverThrustPerRotor()));
+  }
 }
 
 FlightResult FlyTrajectory(const Reference& reference, const FlightParams& params,

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "control/cascade.h"
+#include "map/map.h"
 #include "sim/simulation.h"
 #include "trajectory/polynomial.h"
 
@@ -53,6 +54,10 @@ struct Reference {
   std::function<Vec3(double t, int derivative)> evaluate;
 };
 Reference ReferenceOf(const PiecewiseTrajectory& trajectory);
+
+// The scene puts the vehicle at rest at the requested start (on the floor when the start is at
+// floor level). A start in the air becomes the trajectory's first point `used`, hovering.
+void PlaceVehicleAtStart(const Map& map, const Vec3& requested, const Vec3& used, Simulation* sim);
 
 // Flies the reference from the simulation's current state (at rest on the floor or in the air
 // at the trajectory's start) and holds its end until reached. `clearance` gives the distance

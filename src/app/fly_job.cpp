@@ -28,6 +28,7 @@ namespace {
 std::atomic<bool> stop_requested{false};
 
 constexpr double kCityRouteMargin = 25.0;  // [m] buildings kept in a city flight's scene
+constexpr double kTreeIntro = 3.0;         // [s] of video in which the RRT* tree grows
 
 struct Interrupted : std::runtime_error {
   Interrupted() : std::runtime_error("interrupted") {}
@@ -116,7 +117,9 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
   // plan and solve; the preparation is waited for on every way out
   std::optional<PlanOutcome> planned;
   try {
-    planned = PlanFlight(setup);
+    FlightSetup recorded = setup;
+    recorded.planning.rrt.record_tree = options.show_tree;
+    planned = PlanFlight(recorded);
   } catch (...) {
     if (prepared.valid()) prepared.wait();
     throw;
@@ -168,12 +171,7 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
   }
 
   // fly: the vehicle rests at the start (on the floor when the start is at floor level)
-  const Vec3 rest = VehicleRestPosition(setup.map, vehicle, setup.start);
-  if (rest.z() > setup.map.bounds.min.z() + 0.5 * vehicle.collision_size.z() + 1e-9) {
-    // in the air: start at the trajectory's first point, rotors at hover thrust
-    sim->SetVehicleState(State{plan.start.used, Vec3::Zero(), Quat::Identity(), Vec3::Zero()});
-    sim->SetRotorThrusts(Vec4::Constant(vehicle.HoverThrustPerRotor()));
-  }
+  PlaceVehicleAtStart(setup.map, setup.start, plan.start.used, sim.get());
   const CollisionWorld world(setup.map, CollisionParams{vehicle.collision_size, 0.0});
   // telemetry is streamed to telemetry.csv.partial as the vehicle flies, in blocks of rows, and
   // renamed when the flight is over
@@ -216,6 +214,27 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
       throw InputError({frames_folder, 0}, "--frames-every", "cannot create: " + ec.message());
   }
   Image image;
+  // --show-tree: the tree grows in the video's first seconds, seen from the overview camera,
+  // as the planner added its edges; then it stays, and overview.png shows it whole
+  overlay.tree = plan.result.tree;
+  if (options.show_tree && overlay.tree.empty()) {
+    err << "aerobox: --show-tree: no RRT* tree (the lattice planned this map)\n";
+  }
+  if (video && !overlay.tree.empty()) {
+    Overlay growing = overlay;
+    growing.path.clear();
+    growing.trajectory.clear();
+    growing.speeds.clear();
+    const int intro = std::max(1, static_cast<int>(std::lround(kTreeIntro * options.fps)));
+    for (int f = 1; f <= intro; ++f) {
+      growing.tree_shown = overlay.tree.size() * f / intro;
+      growing.text = "planning: RRT* tree, " + std::to_string(growing.tree_shown) + " edges";
+      renderer->Render({CameraKind::kOverview, ""}, growing, &image);
+      video->AddFrame(image);
+      ++frames;
+    }
+  }
+  overlay.tree_shown = overlay.tree.size();
   const auto begin = std::chrono::steady_clock::now();
   const auto on_sample = [&](const TelemetrySample& s) {
     if (stop_requested) throw Interrupted();

@@ -21,6 +21,8 @@ struct FlyOptions {
   std::string quality = "fast";  // fast or pretty
   bool progress = true;          // a progress line on standard error when it is a terminal
   double frames_every = 0.0;     // [s] of simulation between PNG frames in frames/ (0: none)
+  bool show_tree = false;        // draw the RRT* tree: growing in the video's first seconds,
+                                 // whole in overview.png
 };
 
 // Set from a SIGINT handler: the run stops at the next control step, and every output is then

@@ -1,6 +1,7 @@
 #include "app/plan_job.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <tuple>
 
@@ -145,7 +146,26 @@ TrajectoryResult TrajectoryAlong(const FlightSetup& setup, const std::vector<Vec
       [&trajectory_world](const Vec3& a, const Vec3& b) {
         return trajectory_world.IsSegmentFree(a, b);
       }};
-  return GenerateTrajectory(path, view, settings.trajectory);
+  TrajectoryResult result = GenerateTrajectory(path, view, settings.trajectory);
+  if (settings.trajectory_method == TrajectoryMethod::kMinSnap ||
+      result.status != TrajectoryStatus::kSolved) {
+    return result;
+  }
+  // a baseline on the same waypoints and segment times as min-snap's: only the polynomials
+  // differ (and the baselines do not look at obstacles)
+  const auto begin = std::chrono::steady_clock::now();
+  std::vector<double> durations;
+  for (const PolynomialSegment& segment : result.trajectory.segments())
+    durations.push_back(segment.duration());
+  result.trajectory = BaselineTrajectory(settings.trajectory_method, result.waypoints, durations);
+  result.corridors.assign(durations.size(), std::nullopt);
+  result.stats.solve_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  result.stats.max_speed = result.trajectory.MaxNorm(kVelocity, settings.trajectory.check_step);
+  result.stats.max_accel = result.trajectory.MaxNorm(kAcceleration, settings.trajectory.check_step);
+  result.stats.snap_cost = result.trajectory.SnapCost();
+  result.stats.solver_message = ToString(settings.trajectory_method);
+  return result;
 }
 
 std::string TrajectoryCsv(const PiecewiseTrajectory& trajectory, double rate) {

@@ -53,7 +53,8 @@ PlanOutcome PlanFlight(const FlightSetup& setup);
 // The lattice PlanFlight builds for `setup` (altitudes counted from the map's floor).
 LatticeParams LatticeParamsFor(const FlightSetup& setup);
 
-// PlanFlight's second half: the trajectory along `path`, keeping the trajectory clearance.
+// PlanFlight's second half: the trajectory along `path`, keeping the trajectory clearance. With
+// a baseline method, min-snap's waypoints and segment times carry the baseline's polynomials.
 TrajectoryResult TrajectoryAlong(const FlightSetup& setup, const std::vector<Vec3>& path);
 
 // A map wider than 200 m (a city): planned on a lattice (with [planner] kind = auto) and flown

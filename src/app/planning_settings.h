@@ -7,6 +7,7 @@
 #include "geometry/collision_world.h"
 #include "planning/lattice_planner.h"
 #include "planning/rrt_star.h"
+#include "trajectory/baselines.h"
 #include "trajectory/trajectory_generator.h"
 
 namespace aerobox {
@@ -27,6 +28,8 @@ struct PlanningSettings {
   std::string planner = "auto";
   LatticeParams lattice;  // altitudes relative to the map's floor: see PlanFlight
   TrajectoryParams trajectory;
+  // minsnap (ours), or a baseline on min-snap's waypoints and times (trajectory/baselines.h)
+  TrajectoryMethod trajectory_method = TrajectoryMethod::kMinSnap;
   // What the trajectory keeps from obstacles [m]: half the planner's, so that the corridors
   // around the planner's path have room to bend in.
   double trajectory_clearance = 0.05;

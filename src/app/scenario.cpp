@@ -113,10 +113,19 @@ void ReadTrajectory(const toml::table& table, const std::string& file, PlanningS
       params.samples_per_segment = static_cast<int>(Number(node, file, field, 1, 1000));
     } else if (name == "max_refinements") {
       params.max_refinements = static_cast<int>(Number(node, file, field, 0, 100));
+    } else if (name == "method") {
+      const std::optional<std::string> text = node.value<std::string>();
+      const std::optional<TrajectoryMethod> method =
+          text ? ParseTrajectoryMethod(*text) : std::nullopt;
+      if (!method) {
+        throw InputError({file, LineOf(node)}, field,
+                         "expected \"minsnap\", \"quintic\", \"cubic\" or \"septic-full\"");
+      }
+      settings->trajectory_method = *method;
     } else {
       throw InputError({file, LineOf(node)}, field,
                        "unknown key (expected max_speed, max_accel, clearance, corridors, "
-                       "corridor_growth, samples_per_segment or max_refinements)");
+                       "corridor_growth, samples_per_segment, max_refinements or method)");
     }
   }
 }

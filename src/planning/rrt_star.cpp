@@ -118,6 +118,7 @@ class Planner {
       if (Extend(target)) UpdateBest(elapsed(), &result.stats);
     }
     result.stats.nodes = tree_.points.size();
+    result.tree = std::move(grown_);
     if (best_parent_ < 0) {
       result.stats.planning_time = elapsed();
       return result;
@@ -139,6 +140,7 @@ class Planner {
   int AddNode(const Vec3& p, int parent, double cost) {
     const int index = tree_.Add(p, parent, cost);
     index_.Added();
+    if (params_.record_tree && parent >= 0) grown_.emplace_back(p, tree_.points[parent]);
     return index;
   }
 
@@ -248,6 +250,7 @@ class Planner {
   std::vector<double> neighbour_d2_;
   std::vector<Candidate> candidates_;
   std::vector<int> stack_;
+  std::vector<std::pair<Vec3, Vec3>> grown_;  // with params_.record_tree
 };
 
 }  // namespace

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "common/types.h"
@@ -33,6 +34,8 @@ struct RrtStarParams {
   int shortcut_attempts = 100;
   // Seeds the planner's own mt19937_64.
   std::uint64_t seed = 1;
+  // Keep every edge as it was added (PlanResult::tree), to draw the tree growing.
+  bool record_tree = false;
 
   // Throws std::invalid_argument naming the field and value.
   void Validate() const;
@@ -62,6 +65,9 @@ struct PlanResult {
   PlanStatus status = PlanStatus::kNoPathWithinBudget;
   std::vector<Vec3> path;  // start, waypoints..., goal when solved; empty otherwise
   PlanStats stats;
+  // with RrtStarParams::record_tree: (new node, its parent then), in the order they were added
+  // (rewiring changes some parents later; this is the tree as it grew)
+  std::vector<std::pair<Vec3, Vec3>> tree;
 };
 
 // Plans from start to goal, sampling inside `bounds` [m]. Never throws for a problem that has no

@@ -13,6 +13,7 @@ namespace {
 
 constexpr int kOverlayGeoms = 6000;       // room in the scene for overlay geoms
 constexpr int kMaxPolylinePoints = 1500;  // longer polylines are subsampled
+constexpr size_t kMaxTreeEdges = 3000;    // a larger tree is drawn with every n-th edge
 
 // Every n-th point so that at most kMaxPolylinePoints remain (the last one always).
 std::vector<size_t> Subsample(size_t count) {
@@ -91,6 +92,12 @@ struct Renderer::Impl {
     static const float kTrail[4] = {0.1f, 0.1f, 0.1f, 1.0f};
     static const float kStart[4] = {0.1f, 0.8f, 0.2f, 0.9f};
     static const float kGoal[4] = {0.9f, 0.15f, 0.1f, 0.9f};
+    static const float kTree[4] = {0.35f, 0.55f, 0.35f, 0.6f};
+    const size_t shown = std::min(overlay.tree_shown, overlay.tree.size());
+    const size_t every = std::max<size_t>(1, (shown + kMaxTreeEdges - 1) / kMaxTreeEdges);
+    for (size_t i = 0; i < shown; i += every) {
+      AddLine(overlay.tree[i].first, overlay.tree[i].second, kTree, 1.0);
+    }
     AddPolyline(overlay.path, kPath, 2.0);
     const std::vector<size_t> kept = Subsample(overlay.trajectory.size());
     double top = 1e-9;
@@ -188,7 +195,8 @@ Renderer::Renderer(Simulation* sim, const RenderSettings& settings)
   mjv_defaultOption(&impl_->option);
   mjr_defaultContext(&impl_->gl);
   mjv_makeScene(m, &impl_->scene,
-                m->ngeom + kOverlayGeoms + static_cast<int>(settings.scenery.size()));
+                m->ngeom + kOverlayGeoms + static_cast<int>(kMaxTreeEdges) +
+                    static_cast<int>(settings.scenery.size()));
   mjr_makeContext(m, &impl_->gl, mjFONTSCALE_150);
   mjr_setBuffer(mjFB_OFFSCREEN, &impl_->gl);
   const bool pretty = settings.quality == Quality::kPretty;

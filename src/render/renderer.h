@@ -55,6 +55,10 @@ struct Overlay {
   std::optional<Vec3> start;
   std::optional<Vec3> goal;
   std::string text;  // top-left text, lines separated by '\n'
+  // the planner's tree, as (node, parent) edges in the order they were added; the first
+  // `tree_shown` are drawn (at most kMaxTreeEdges of them, evenly chosen)
+  std::vector<std::pair<Vec3, Vec3>> tree;
+  size_t tree_shown = 0;
 };
 
 class Renderer {

@@ -230,3 +230,28 @@ TEST_CASE("a streamed file appears only when committed") {
 }
 
 }  // namespace aerobox
+
+namespace aerobox {
+
+TEST_CASE("fly --show-tree: 3 s of the tree growing open the video, and --trajectory is checked") {
+  const std::string scenario = (testing::SourceDir() / "scenes/window/scenario.toml").string();
+  const TempDir dir;
+  const auto frames = [&](const std::vector<std::string>& extra, const std::string& name) {
+    std::vector<std::string> args = {
+        "fly", scenario, "--size", "160x120", "--quiet", "--out", (dir.path() / name).string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const Run run = Aerobox(args);
+    REQUIRE(run.code == kExitReachedGoal);
+    const std::string summary = testing::ReadFile(dir.path() / name / "summary.json");
+    const size_t at = summary.find("\"video_frames\": ");
+    REQUIRE(at != std::string::npos);
+    return std::stoi(summary.substr(at + 16));
+  };
+  CHECK(frames({"--show-tree"}, "tree") == frames({}, "plain") + 90);  // 3 s at 30 fps
+  const Run bad = Aerobox({"fly", scenario, "--no-video", "--trajectory", "septic"});
+  CHECK(bad.code == kExitBadInput);
+  CHECK(bad.err.find("--trajectory: expected minsnap, quintic, cubic or septic-full") !=
+        std::string::npos);
+}
+
+}  // namespace aerobox

@@ -66,6 +66,16 @@ TEST_CASE("scenario files: the [planner] table") {
   CHECK(ReadScenario(plain, "s.toml").planning.rrt.max_iterations > 0);
 }
 
+TEST_CASE("scenario files: the trajectory generator") {
+  std::istringstream plain("map = \"m.txt\"\n");
+  CHECK(ReadScenario(plain, "s.toml").planning.trajectory_method == TrajectoryMethod::kMinSnap);
+  std::istringstream cubic("map = \"m.txt\"\n[trajectory]\nmethod = \"cubic\"\n");
+  CHECK(ReadScenario(cubic, "s.toml").planning.trajectory_method == TrajectoryMethod::kCubic);
+  CHECK(ScenarioError("map = \"m.txt\"\n[trajectory]\nmethod = \"septic\"\n") ==
+        "scenes/x/scenario.toml:3: trajectory.method: expected \"minsnap\", \"quintic\", "
+        "\"cubic\" or \"septic-full\"");
+}
+
 TEST_CASE("scenario files: errors name the file, the line and the key") {
   CHECK(ScenarioError("map = \"m.txt\"\n[planner]\nclearance = -1\n") ==
         "scenes/x/scenario.toml:3: planner.clearance: expected a number from 0 to 10");

@@ -64,6 +64,23 @@ TEST_CASE("the same seed gives the same path, another seed another") {
   CHECK(plan(4) != plan(5));
 }
 
+TEST_CASE("the recorded tree: one edge per node but the root, free, and no change to the path") {
+  const Map map = WindowRoom();
+  const CollisionWorld world(map, CollisionParams());
+  const Validity validity = testing::ValidityOf(world);
+  RrtStarParams params = Deterministic(1500);
+  const PlanResult plain =
+      PlanRrtStar(Vec3(2, 1, 1.5), Vec3(2, 9, 1.5), world.free_bounds(), validity, params);
+  CHECK(plain.tree.empty());
+  params.record_tree = true;
+  const PlanResult recorded =
+      PlanRrtStar(Vec3(2, 1, 1.5), Vec3(2, 9, 1.5), world.free_bounds(), validity, params);
+  CHECK(recorded.path == plain.path);
+  REQUIRE(recorded.tree.size() + 1 == recorded.stats.nodes);
+  CHECK(recorded.tree.front().second == Vec3(2, 1, 1.5));  // the first edge leaves the start
+  for (const auto& [node, parent] : recorded.tree) CHECK(world.IsSegmentFree(parent, node));
+}
+
 TEST_CASE("the best path never gets longer with more iterations") {
   const Map map = WindowRoom();
   const CollisionWorld world(map, CollisionParams());
