@@ -10,6 +10,8 @@
 
 #include "app/cli.h"
 #include "app/exit_codes.h"
+#include "app/scenario.h"
+#include "common/error.h"
 #include "test_support.h"
 
 namespace aerobox {
@@ -50,6 +52,29 @@ TEST_CASE("every malformed input exits 2, names its file and line, and writes no
   }
   CHECK(cases == files);
   CHECK(cases >= 30);
+}
+
+}  // namespace aerobox
+
+namespace aerobox {
+
+TEST_CASE("the scenario fuzzer's kept inputs read without a crash") {
+  const std::filesystem::path corpus =
+      testing::SourceDir() / "tests" / "fuzz" / "corpus" / "scenario";
+  int inputs = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(corpus)) {
+    CAPTURE(entry.path());
+    std::ifstream in(entry.path(), std::ios::binary);
+    try {
+      const Scenario scenario = ReadScenario(in, "corpus.toml");
+      CHECK_FALSE(scenario.map_path.empty());
+      CHECK_NOTHROW(scenario.planning.trajectory.Validate());
+    } catch (const InputError&) {
+      // the expected answer to bad input
+    }
+    ++inputs;
+  }
+  CHECK(inputs >= 5);
 }
 
 }  // namespace aerobox
