@@ -187,9 +187,13 @@ Scenario ReadScenario(std::istream& in, const std::string& file) {
       scenario.goal = ReadPoint(node, file, "goal");
       scenario.goal_line = LineOf(node);
     } else if (name == "seed") {
-      const std::optional<int64_t> value = node.value<int64_t>();
-      if (!value || *value < 0) throw InputError(where, name, "expected a non-negative integer");
-      scenario.seed = static_cast<std::uint64_t>(*value);
+      // an integer node only: toml++ would convert a float such as 2e30 by an out-of-range
+      // cast (undefined behaviour; the fuzzer found it)
+      const toml::value<int64_t>* value = node.as_integer();
+      if (value == nullptr || value->get() < 0) {
+        throw InputError(where, name, "expected a non-negative integer");
+      }
+      scenario.seed = static_cast<std::uint64_t>(value->get());
     } else if (name == "planner") {
       const toml::table* section = node.as_table();
       if (section == nullptr) throw InputError(where, name, "expected a table [planner]");
