@@ -60,9 +60,8 @@ Row FlyMethod(const FlightSetup& setup, const PlanOutcome& plan, TrajectoryMetho
   row.solve = plan.trajectory->stats.solve_time;
   if (method != TrajectoryMethod::kMinSnap) {
     const auto begin = std::chrono::steady_clock::now();
-    std::vector<double> durations;
-    for (const PolynomialSegment& s : trajectory.segments()) durations.push_back(s.duration());
-    trajectory = BaselineTrajectory(method, plan.trajectory->waypoints, durations);
+    trajectory =
+        BaselineTrajectory(method, plan.trajectory->waypoints, trajectory.SegmentDurations());
     row.solve = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   }
   row.snap = IntegratedSquare(trajectory, kSnap);
@@ -94,9 +93,7 @@ Row FlyMethod(const FlightSetup& setup, const PlanOutcome& plan, TrajectoryMetho
 
 std::string ProfilesCsv(const PlanOutcome& plan) {
   CsvTable table({"t", "method", "x", "y", "z", "ax", "ay", "az"});
-  std::vector<double> durations;
-  for (const PolynomialSegment& s : plan.trajectory->trajectory.segments())
-    durations.push_back(s.duration());
+  const std::vector<double> durations = plan.trajectory->trajectory.SegmentDurations();
   for (const TrajectoryMethod method : kMethods) {
     const PiecewiseTrajectory trajectory =
         method == TrajectoryMethod::kMinSnap

@@ -154,11 +154,9 @@ TrajectoryResult TrajectoryAlong(const FlightSetup& setup, const std::vector<Vec
   // a baseline on the same waypoints and segment times as min-snap's: only the polynomials
   // differ (and the baselines do not look at obstacles)
   const auto begin = std::chrono::steady_clock::now();
-  std::vector<double> durations;
-  for (const PolynomialSegment& segment : result.trajectory.segments())
-    durations.push_back(segment.duration());
-  result.trajectory = BaselineTrajectory(settings.trajectory_method, result.waypoints, durations);
-  result.corridors.assign(durations.size(), std::nullopt);
+  result.trajectory = BaselineTrajectory(settings.trajectory_method, result.waypoints,
+                                         result.trajectory.SegmentDurations());
+  result.corridors.assign(result.trajectory.segments().size(), std::nullopt);
   result.stats.solve_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   result.stats.max_speed = result.trajectory.MaxNorm(kVelocity, settings.trajectory.check_step);

@@ -82,6 +82,12 @@ std::vector<double> PiecewiseTrajectory::KnotTimes() const {
   return knots;
 }
 
+std::vector<double> PiecewiseTrajectory::SegmentDurations() const {
+  std::vector<double> durations;
+  for (const PolynomialSegment& segment : segments_) durations.push_back(segment.duration());
+  return durations;
+}
+
 Eigen::VectorXd PiecewiseTrajectory::Evaluate(double t, int derivative) const {
   if (segments_.empty()) throw std::logic_error("PiecewiseTrajectory: empty");
   t = std::max(t, 0.0);

@@ -63,6 +63,8 @@ class PiecewiseTrajectory {
   double duration() const;
   // Start times of the segments and the end time: segments().size() + 1 knots [s].
   std::vector<double> KnotTimes() const;
+  // Each segment's duration [s], in order.
+  std::vector<double> SegmentDurations() const;
 
   // The derivative at time t [s] from the start; t outside [0, duration] is clamped.
   Eigen::VectorXd Evaluate(double t, int derivative) const;
