@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "app/cli.h"
 #include "app/exit_codes.h"
 #include "app/scenario.h"
+#include "cli_runner.h"
 #include "common/error.h"
 #include "test_support.h"
 
@@ -33,16 +33,12 @@ TEST_CASE("every malformed input exits 2, names its file and line, and writes no
     CAPTURE(input);
     const testing::TempDir dir;
     const std::string out_dir = (dir.path() / "out").string();
-    const std::vector<std::string> args = {"aerobox", "fly",   input,  "--no-video",
-                                           "--quiet", "--out", out_dir};
-    std::vector<const char*> argv;
-    for (const std::string& a : args) argv.push_back(a.c_str());
-    std::ostringstream out, err;
-    const int code = RunCli(static_cast<int>(argv.size()), argv.data(), out, err);
-    CAPTURE(err.str());
-    CHECK(code == kExitBadInput);
-    CHECK(err.str().find(input + ":" + std::to_string(expected_line) + ": ") != std::string::npos);
-    CHECK(err.str().find('\0') == std::string::npos);  // binary junk is escaped
+    const testing::CliRun run =
+        testing::RunAerobox({"fly", input, "--no-video", "--quiet", "--out", out_dir});
+    CAPTURE(run.err);
+    CHECK(run.code == kExitBadInput);
+    CHECK(run.err.find(input + ":" + std::to_string(expected_line) + ": ") != std::string::npos);
+    CHECK(run.err.find('\0') == std::string::npos);  // binary junk is escaped
     CHECK_FALSE(std::filesystem::exists(out_dir));
   }
   // every file of the corpus is listed

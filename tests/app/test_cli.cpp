@@ -6,6 +6,7 @@
 
 #include "app/cli.h"
 #include "app/exit_codes.h"
+#include "cli_runner.h"
 #include "common/error.h"
 #include "sim/simulation.h"
 #include "test_support.h"
@@ -16,24 +17,9 @@ namespace {
 using testing::TempDir;
 namespace fs = std::filesystem;
 
-struct Run {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
+using Run = testing::CliRun;
 
-Run Aerobox(std::vector<std::string> args) {
-  args.insert(args.begin(), "aerobox");
-  std::vector<const char*> argv;
-  for (const std::string& arg : args) argv.push_back(arg.c_str());
-  std::ostringstream out;
-  std::ostringstream err;
-  Run run;
-  run.code = RunCli(static_cast<int>(argv.size()), argv.data(), out, err);
-  run.out = out.str();
-  run.err = err.str();
-  return run;
-}
+Run Aerobox(const std::vector<std::string>& args) { return testing::RunAerobox(args); }
 
 const char* const kRoom = "boundary 0 0 0 5 5 2\nblock 2 2 0 3 3 2 0 255 0\n";
 

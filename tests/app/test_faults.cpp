@@ -11,33 +11,21 @@
 #include <string>
 #include <vector>
 
-#include "app/cli.h"
 #include "app/exit_codes.h"
+#include "cli_runner.h"
 #include "test_support.h"
 
 namespace aerobox {
 namespace {
 
-struct Run {
-  int code = -1;
-  std::string out, err;
-};
-
 // `aerobox fly window --no-video --out OUT` with AEROBOX_FAULT set to `fault` (when not empty).
-Run FlyWindow(const std::string& out_dir, const std::string& fault) {
+testing::CliRun FlyWindow(const std::string& out_dir, const std::string& fault) {
   const std::string scenario =
       (testing::SourceDir() / "scenes" / "window" / "scenario.toml").string();
-  const std::vector<std::string> args = {"aerobox", "fly",   scenario, "--no-video",
-                                         "--quiet", "--out", out_dir};
-  std::vector<const char*> argv;
-  for (const std::string& a : args) argv.push_back(a.c_str());
   if (!fault.empty()) setenv("AEROBOX_FAULT", fault.c_str(), 1);
-  std::ostringstream out, err;
-  Run run;
-  run.code = RunCli(static_cast<int>(argv.size()), argv.data(), out, err);
+  const testing::CliRun run =
+      testing::RunAerobox({"fly", scenario, "--no-video", "--quiet", "--out", out_dir});
   unsetenv("AEROBOX_FAULT");
-  run.out = out.str();
-  run.err = err.str();
   return run;
 }
 
@@ -54,7 +42,7 @@ bool HasPartialFiles(const std::filesystem::path& folder) {
 TEST_CASE("an output folder that cannot be made stops the run before any work") {
   const testing::TempDir dir;
   std::ofstream(dir.path() / "a_file") << "x";
-  const Run run = FlyWindow((dir.path() / "a_file" / "out").string(), "");
+  const testing::CliRun run = FlyWindow((dir.path() / "a_file" / "out").string(), "");
   CHECK(run.code == kExitBadInput);
   CHECK(run.err.find("--out: cannot create the output folder") != std::string::npos);
   CHECK(run.out.empty());  // nothing planned or flown
@@ -65,7 +53,7 @@ TEST_CASE("a failing write: a clear error, exit 2, and no partial file") {
     CAPTURE(name);
     const testing::TempDir dir;
     const std::filesystem::path out = dir.path() / "out";
-    const Run run = FlyWindow(out.string(), std::string("write:") + name);
+    const testing::CliRun run = FlyWindow(out.string(), std::string("write:") + name);
     CAPTURE(run.err);
     CHECK(run.code == kExitBadInput);
     CHECK(run.err.find((out / name).string() + ": writing failed") != std::string::npos);
@@ -77,7 +65,7 @@ TEST_CASE("a failing write: a clear error, exit 2, and no partial file") {
 TEST_CASE("a non-finite value in the controller: status non-finite, exit 5") {
   const testing::TempDir dir;
   const std::filesystem::path out = dir.path() / "out";
-  const Run run = FlyWindow(out.string(), "nonfinite:3");
+  const testing::CliRun run = FlyWindow(out.string(), "nonfinite:3");
   CHECK(run.code == kExitFlightFailed);
   CHECK(run.out.find("non-finite state after 3.0") != std::string::npos);
   const std::string summary = testing::ReadFile(out / "summary.json");
@@ -88,7 +76,7 @@ TEST_CASE("a non-finite value in the controller: status non-finite, exit 5") {
 TEST_CASE("an Ipopt failure: exit 4 with Ipopt's reason") {
   const testing::TempDir dir;
   const std::filesystem::path out = dir.path() / "out";
-  const Run run = FlyWindow(out.string(), "ipopt");
+  const testing::CliRun run = FlyWindow(out.string(), "ipopt");
   CHECK(run.code == kExitNoTrajectory);
   CHECK(run.out.find("no trajectory (maximum iterations exceeded)") != std::string::npos);
   const std::string summary = testing::ReadFile(out / "summary.json");

@@ -9,8 +9,8 @@
 #include <sstream>
 #include <vector>
 
-#include "app/cli.h"
 #include "app/exit_codes.h"
+#include "cli_runner.h"
 #include "test_support.h"
 
 namespace aerobox {
@@ -39,16 +39,14 @@ struct Flight {
 
 Flight Fly(const std::string& input, std::vector<std::string> extra = {}) {
   const testing::TempDir dir;
-  std::vector<std::string> args = {
-      "aerobox", "fly", input, "--no-video", "--quiet", "--out", (dir.path() / "out").string()};
+  std::vector<std::string> args = {"fly",     input,   "--no-video",
+                                   "--quiet", "--out", (dir.path() / "out").string()};
   args.insert(args.end(), extra.begin(), extra.end());
-  std::vector<const char*> argv;
-  for (const std::string& a : args) argv.push_back(a.c_str());
-  std::ostringstream out, err;
+  const testing::CliRun run = testing::RunAerobox(args);
   Flight flight;
-  flight.code = RunCli(static_cast<int>(argv.size()), argv.data(), out, err);
-  flight.out = out.str();
-  flight.err = err.str();
+  flight.code = run.code;
+  flight.out = run.out;
+  flight.err = run.err;
   flight.summary = testing::ReadFile(dir.path() / "out" / "summary.json");
   return flight;
 }
