@@ -6,6 +6,7 @@
 #include <tuple>
 
 #include "common/error.h"
+#include "common/fault_injection.h"
 #include "common/number_format.h"
 #include "telemetry/csv_table.h"
 
@@ -146,7 +147,9 @@ TrajectoryResult TrajectoryAlong(const FlightSetup& setup, const std::vector<Vec
       [&trajectory_world](const Vec3& a, const Vec3& b) {
         return trajectory_world.IsSegmentFree(a, b);
       }};
-  TrajectoryResult result = GenerateTrajectory(path, view, settings.trajectory);
+  TrajectoryParams params = settings.trajectory;
+  params.ipopt.injected_failure = InjectedFault("ipopt").has_value();  // fault tests only
+  TrajectoryResult result = GenerateTrajectory(path, view, params);
   if (settings.trajectory_method == TrajectoryMethod::kMinSnap ||
       result.status != TrajectoryStatus::kSolved) {
     return result;

@@ -3,6 +3,8 @@
 //   write:NAME     writing the output file NAME (e.g. telemetry.csv) fails as on a full disk
 //   nonfinite:T    the controller's position setpoint becomes NaN at T seconds of flight
 //   ipopt          Ipopt may not take a single iteration, so it stops with its own failure
+//                  (passed down as IpoptSettings::injected_failure; domain code reads no
+//                  environment)
 // Unset (the normal case), nothing is injected.
 #pragma once
 

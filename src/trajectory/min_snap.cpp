@@ -9,8 +9,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "common/fault_injection.h"
-
 namespace aerobox {
 namespace {
 
@@ -462,9 +460,7 @@ MinSnapSolution SolveMinSnapIpopt(const MinSnapProblem& problem, const IpoptSett
     }
     ready = true;
   }
-  // an injected fault (common/fault_injection.h): no iteration allowed, from a start that is
-  // not optimal, so that Ipopt stops with its own failure status
-  const bool fail = InjectedFault("ipopt").has_value();
+  const bool fail = settings.injected_failure;
   app->Options()->SetNumericValue("tol", settings.tolerance);
   app->Options()->SetIntegerValue("max_iter", fail ? 0 : settings.max_iterations);
 

@@ -38,6 +38,9 @@ struct IpoptSettings {
   int max_iterations = 200;  // Ipopt's "max_iter", per solve
   // Ipopt solves while adding violated corridor samples (see SolveMinSnapIpopt), at most.
   int max_constraint_rounds = 10;
+  // For fault tests: Ipopt may take no iteration and starts from a point that is not optimal,
+  // so it stops with its own failure status (the app sets it from AEROBOX_FAULT=ipopt).
+  bool injected_failure = false;
 };
 
 struct MinSnapSolution {
