@@ -21,6 +21,8 @@ packages=(
   libosmesa6-dev libavcodec-dev libavformat-dev libavutil-dev libswscale-dev libpng-dev
   # src/app: command line, scenario files, aerobox bench
   libcli11-dev libtomlplusplus-dev libbenchmark-dev
+  # src/telemetry: summary.json
+  nlohmann-json3-dev
   # tests/
   doctest-dev
   # tools/plot_telemetry.py (run by tools/fly.sh, tested by tools/test.sh)

@@ -315,8 +315,7 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   fly->add_option("--fps", fly_options.fps, "video frames per second")->capture_default_str();
   fly->add_option("--speed", fly_options.speed, "playback speed (2: twice as fast)")
       ->capture_default_str();
-  fly->add_option("--camera", fly_options.camera, "chase, overview, top, or a scene camera")
-      ->capture_default_str();
+  fly->add_option("--camera", fly_options.camera, "chase, overview or top")->capture_default_str();
   fly->add_option("--quality", fly_options.quality, "fast or pretty")->capture_default_str();
   bool quiet = false;
   fly->add_flag("--quiet", quiet, "no progress line");
@@ -361,6 +360,17 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
       return RunBench(bench_sections, bench_scenes, bench_maps, bench_city, bench_seeds,
                       bench_seconds, out, err);
     }
+    if (fly->parsed()) {
+      fly_options.out_dir = out_dir;
+      fly_options.video = !no_video;
+      fly_options.progress = !quiet;
+      char tail = 0;
+      if (std::sscanf(size.c_str(), "%dx%d%c", &fly_options.width, &fly_options.height, &tail) !=
+          2) {
+        throw InputError({"command line", 0}, "--size", "expected WxH, e.g. 640x480");
+      }
+      ValidateFlyOptions(fly_options);
+    }
     SetupOverrides overrides;
     overrides.start = ParsePointOption(start_text, "--start");
     overrides.goal = ParsePointOption(goal_text, "--goal");
@@ -376,15 +386,7 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     }
     if (scene->parsed()) return RunScene(setup, output, out);
     if (plan->parsed()) return RunPlan(setup, out_dir, out);
-    if (fly->parsed()) {
-      fly_options.out_dir = out_dir;
-      fly_options.video = !no_video;
-      fly_options.progress = !quiet;
-      if (std::sscanf(size.c_str(), "%dx%d", &fly_options.width, &fly_options.height) != 2) {
-        throw InputError({"command line", 0}, "--size", "expected WxH, e.g. 640x480");
-      }
-      return RunFly(setup, fly_options, out, err);
-    }
+    if (fly->parsed()) return RunFly(setup, fly_options, out, err);
     return RunCheck(setup, out);
   } catch (const InputError& error) {
     err << "aerobox: error: " << error.what() << "\n";

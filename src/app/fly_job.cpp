@@ -35,10 +35,9 @@ struct Interrupted : std::runtime_error {
 };
 
 CameraSpec ParseCamera(const std::string& name) {
-  if (name == "chase") return {CameraKind::kChase, ""};
   if (name == "overview") return {CameraKind::kOverview, ""};
   if (name == "top") return {CameraKind::kTop, ""};
-  return {CameraKind::kNamed, name};
+  return {CameraKind::kChase, ""};
 }
 
 std::string Hud(double t, const State& state, const char* status) {
@@ -51,6 +50,42 @@ std::string Hud(double t, const State& state, const char* status) {
 }  // namespace
 
 void RequestStop() { stop_requested = true; }
+
+void ValidateFlyOptions(const FlyOptions& options) {
+  const SourceLocation command_line{"command line", 0};
+  if (options.quality != "fast" && options.quality != "pretty") {
+    throw InputError(command_line, "--quality",
+                     "expected fast or pretty, got '" + options.quality + "'");
+  }
+  if (options.camera != "chase" && options.camera != "overview" && options.camera != "top") {
+    throw InputError(command_line, "--camera",
+                     "expected chase, overview or top, got '" + options.camera + "'");
+  }
+  if (!(options.fps > 0 && options.fps <= 240)) {
+    throw InputError(command_line, "--fps", "expected 1 to 240 frames per second");
+  }
+  if (!(options.speed > 0 && options.speed <= 100)) {
+    throw InputError(command_line, "--speed", "expected a playback speed above 0, at most 100");
+  }
+  if (!(options.frames_every >= 0 && std::isfinite(options.frames_every))) {
+    throw InputError(command_line, "--frames-every", "expected seconds >= 0");
+  }
+  // every scene has a 1920 x 1080 off-screen buffer (SceneOptions); H.264 in yuv420p needs
+  // even sides
+  const SceneOptions scene;
+  if (options.width < 16 || options.height < 16 || options.width > scene.offscreen_width ||
+      options.height > scene.offscreen_height) {
+    throw InputError(command_line, "--size",
+                     std::to_string(options.width) + "x" + std::to_string(options.height) +
+                         " is outside 16x16 .. " + std::to_string(scene.offscreen_width) + "x" +
+                         std::to_string(scene.offscreen_height));
+  }
+  if (options.video && (options.width % 2 != 0 || options.height % 2 != 0)) {
+    throw InputError(command_line, "--size",
+                     std::to_string(options.width) + "x" + std::to_string(options.height) +
+                         ": a video needs even sides (H.264, yuv420p)");
+  }
+}
 
 CsvTable TelemetryTable() {
   return CsvTable({"t",          "x",      "y",      "z",      "vx",       "vy",     "vz",
@@ -77,12 +112,7 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
             std::ostream& out, std::ostream& err) {
   const auto file = [&folder](const char* name) { return (fs::path(folder) / name).string(); };
 
-  if (options.quality != "fast" && options.quality != "pretty") {
-    throw InputError({"command line", 0}, "--quality", "expected fast or pretty");
-  }
-  if (!(options.fps > 0 && options.fps <= 240) || !(options.speed > 0)) {
-    throw InputError({"command line", 0}, "--fps/--speed", "must be positive (fps at most 240)");
-  }
+  ValidateFlyOptions(options);
   const QuadParams vehicle;
   std::unique_ptr<Simulation> sim;
   std::unique_ptr<Renderer> renderer;

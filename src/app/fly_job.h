@@ -17,7 +17,7 @@ struct FlyOptions {
   int height = 480;
   int fps = 30;                  // frames per second of video
   double speed = 1.0;            // playback speed: 2 shows the flight twice as fast
-  std::string camera = "chase";  // chase, overview, top, or a camera named in the scene
+  std::string camera = "chase";  // chase, overview or top
   std::string quality = "fast";  // fast or pretty
   bool progress = true;          // a progress line on standard error when it is a terminal
   double frames_every = 0.0;     // [s] of simulation between PNG frames in frames/ (0: none)
@@ -28,6 +28,10 @@ struct FlyOptions {
 // Set from a SIGINT handler: the run stops at the next control step, and every output is then
 // complete or absent.
 void RequestStop();
+
+// Throws InputError naming the option when a value cannot be used: the command checks every
+// option before it reads a file or does any work.
+void ValidateFlyOptions(const FlyOptions& options);
 
 // Runs the whole job and returns the exit code (app/exit_codes.h). Throws InputError for bad
 // input, before anything is written.

@@ -40,13 +40,19 @@ double Elapsed(std::chrono::steady_clock::time_point begin) {
 }  // namespace
 
 void LatticeParams::Validate() const {
-  if (!(spacing > 0) || !(vertical_spacing > 0) || !(max_altitude >= min_altitude) ||
-      shortcut_attempts < 0) {
-    throw std::invalid_argument(
-        "LatticeParams: spacings must be > 0 and max_altitude >= "
-        "min_altitude, got spacing " +
-        FormatNumber(spacing));
+  const auto fail = [](const char* field, double value, const char* expected) {
+    throw std::invalid_argument(std::string("LatticeParams.") + field + " must be " + expected +
+                                ", got " + FormatNumber(value));
+  };
+  if (!(spacing > 0 && std::isfinite(spacing))) fail("spacing", spacing, "> 0");
+  if (!(vertical_spacing > 0 && std::isfinite(vertical_spacing))) {
+    fail("vertical_spacing", vertical_spacing, "> 0");
   }
+  if (!std::isfinite(min_altitude)) fail("min_altitude", min_altitude, "finite");
+  if (!(max_altitude >= min_altitude && std::isfinite(max_altitude))) {
+    fail("max_altitude", max_altitude, ">= min_altitude");
+  }
+  if (shortcut_attempts < 0) fail("shortcut_attempts", shortcut_attempts, ">= 0");
 }
 
 LatticePlanner::LatticePlanner(const Aabb& bounds, const Validity& validity,

@@ -184,11 +184,14 @@ Renderer::Renderer(Simulation* sim, const RenderSettings& settings)
   impl_->sim = sim;
   impl_->settings = settings;
   impl_->context = std::make_unique<OffscreenContext>(settings.width, settings.height);
-  // multisampling and the shadow map's size are read from the model when the GL context is
-  // made; the fast preset draws no shadows, so it allocates no 4096^2 shadow map either
+  // multisampling, the shadow map's size and the off-screen buffer's are read from the model
+  // when the GL context is made, and only then: they are set for this renderer and put back
+  // afterwards, so the model (shared with the physics and other renderers) is left as it was.
+  // The fast preset draws no shadows, so it allocates no 4096^2 shadow map either; the
+  // off-screen buffer only needs the image's size, and a smaller one is quicker to allocate.
+  const mjVisual original = m->vis;
   m->vis.quality.offsamples = settings.quality == Quality::kPretty ? 4 : 0;
   if (settings.quality == Quality::kFast) m->vis.quality.shadowsize = 1;
-  // the off-screen buffer only needs the image's size; a smaller one is quicker to allocate
   m->vis.global.offwidth = settings.width;
   m->vis.global.offheight = settings.height;
   mjv_defaultScene(&impl_->scene);
@@ -198,6 +201,7 @@ Renderer::Renderer(Simulation* sim, const RenderSettings& settings)
                 m->ngeom + kOverlayGeoms + static_cast<int>(kMaxTreeEdges) +
                     static_cast<int>(settings.scenery.size()));
   mjr_makeContext(m, &impl_->gl, mjFONTSCALE_150);
+  m->vis = original;
   mjr_setBuffer(mjFB_OFFSCREEN, &impl_->gl);
   const bool pretty = settings.quality == Quality::kPretty;
   impl_->scene.flags[mjRND_SHADOW] = pretty;

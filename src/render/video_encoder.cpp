@@ -109,7 +109,10 @@ struct VideoEncoder::Impl {
   }
 
   void Release() {
-    if (scale != nullptr) sws_freeContext(scale);
+    // each pointer is cleared as it is freed: Release() runs again from the destructor when
+    // Finish() failed after releasing (a rename that did not succeed)
+    sws_freeContext(scale);
+    scale = nullptr;
     av_packet_free(&packet);
     av_frame_free(&frame);
     avcodec_free_context(&codec);

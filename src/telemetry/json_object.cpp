@@ -1,83 +1,73 @@
 #include "telemetry/json_object.h"
 
 #include <cmath>
-
-#include "common/number_format.h"
+#include <nlohmann/json.hpp>
 
 namespace aerobox {
+
+struct JsonObject::Value {
+  nlohmann::ordered_json json = nlohmann::ordered_json::object();
+};
+
 namespace {
 
-std::string Quote(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char buffer[8];
-          std::snprintf(buffer, sizeof(buffer), "\\u%04x", c);
-          out += buffer;
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
+nlohmann::ordered_json Number(double value) {
+  if (!std::isfinite(value)) return nullptr;
+  return value;
 }
 
 }  // namespace
 
+JsonObject::JsonObject() : value_(std::make_unique<Value>()) {}
+JsonObject::~JsonObject() = default;
+JsonObject::JsonObject(const JsonObject& other) : value_(std::make_unique<Value>(*other.value_)) {}
+JsonObject& JsonObject::operator=(const JsonObject& other) {
+  *value_ = *other.value_;
+  return *this;
+}
+
 JsonObject& JsonObject::Add(const std::string& key, double value) {
-  // JSON has no infinity or NaN: null says "none"
-  members_.emplace_back(key, std::isfinite(value) ? FormatNumber(value) : "null");
+  value_->json[key] = Number(value);
   return *this;
 }
 
 JsonObject& JsonObject::Add(const std::string& key, long long value) {
-  members_.emplace_back(key, std::to_string(value));
+  value_->json[key] = value;
   return *this;
 }
 
 JsonObject& JsonObject::Add(const std::string& key, bool value) {
-  members_.emplace_back(key, value ? "true" : "false");
+  value_->json[key] = value;
   return *this;
 }
 
 JsonObject& JsonObject::Add(const std::string& key, const std::string& value) {
-  members_.emplace_back(key, Quote(value));
+  value_->json[key] = value;
   return *this;
 }
 
 JsonObject& JsonObject::Add(const std::string& key, const JsonObject& value) {
-  members_.emplace_back(key, "\x01" + std::to_string(children_.size()));
-  children_.push_back(value);
+  value_->json[key] = value.value_->json;
   return *this;
 }
 
-std::string JsonObject::Text(int indent) const {
-  const std::string pad(2 * (indent + 1), ' ');
-  std::string out = "{\n";
-  for (size_t i = 0; i < members_.size(); ++i) {
-    const auto& [key, value] = members_[i];
-    out += pad + Quote(key) + ": ";
-    out += value.rfind('\x01', 0) == 0 ? children_[std::stoul(value.substr(1))].Text(indent + 1)
-                                       : value;
-    out += i + 1 < members_.size() ? ",\n" : "\n";
-  }
-  out += std::string(2 * indent, ' ') + "}";
-  if (indent == 0) out += "\n";
-  return out;
+JsonObject& JsonObject::Add(const std::string& key, const std::vector<double>& values) {
+  nlohmann::ordered_json array = nlohmann::ordered_json::array();
+  for (const double v : values) array.push_back(Number(v));
+  value_->json[key] = std::move(array);
+  return *this;
+}
+
+JsonObject& JsonObject::Add(const std::string& key, const std::vector<JsonObject>& values) {
+  nlohmann::ordered_json array = nlohmann::ordered_json::array();
+  for (const JsonObject& v : values) array.push_back(v.value_->json);
+  value_->json[key] = std::move(array);
+  return *this;
+}
+
+std::string JsonObject::Text() const {
+  // invalid UTF-8 (a map name from a binary file) is replaced rather than thrown on
+  return value_->json.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace aerobox

@@ -182,12 +182,15 @@ Eigen::MatrixXd SolveKkt(const AxisQp& qp) {
   Eigen::SparseLU<SparseMatrix> lu;
   lu.compute(system);
   if (lu.info() != Eigen::Success) {
-    throw std::runtime_error("min-snap KKT system is singular (degenerate waypoints?)");
+    throw SingularSystem("the minimum-snap system is singular (degenerate waypoints or times)");
   }
   Eigen::MatrixXd rhs(n + m, kAxes);
   rhs.topRows(n) = -qp.linear;
   rhs.bottomRows(m) = qp.rhs;
   const Eigen::MatrixXd solution = lu.solve(rhs);
+  if (lu.info() != Eigen::Success || !solution.allFinite()) {
+    throw SingularSystem("the minimum-snap system has no finite solution (degenerate times)");
+  }
   return solution.topRows(n);
 }
 
@@ -468,7 +471,13 @@ MinSnapSolution SolveMinSnapIpopt(const MinSnapProblem& problem, const IpoptSett
   // violates, add the ones the new solution violates, repeat. Each problem relaxes the full
   // one, so a solution that meets every sample is the full problem's optimum; usually a few
   // of the samples are active, and Ipopt's systems stay small.
-  Eigen::MatrixXd x = SolveKkt(qp);
+  Eigen::MatrixXd x;
+  try {
+    x = SolveKkt(qp);
+  } catch (const SingularSystem& e) {
+    result.message = e.what();
+    return result;
+  }
   if (x.rows() == 0) {
     // a single segment is fully determined by its ends: nothing for Ipopt to choose
     const bool inside = ((qp.lower.array() <= 0.0).all() && (qp.upper.array() >= 0.0).all());

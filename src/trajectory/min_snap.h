@@ -7,6 +7,7 @@
 #pragma once
 
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -26,8 +27,16 @@ struct MinSnapProblem {
   void Validate() const;
 };
 
+// Thrown by the solves below when the KKT system is singular or its solution not finite
+// (degenerate waypoints or durations far outside the numbers' range). GenerateTrajectory turns
+// it into a status; it never reaches a user as an exception.
+class SingularSystem : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 // The equality-constrained optimum (corridors ignored), from the KKT system
-// [2Q A'; A 0] [c; l] = [0; b] solved with a sparse LU per axis.
+// [2Q A'; A 0] [c; l] = [0; b] solved with a sparse LU per axis. Throws SingularSystem.
 PiecewiseTrajectory SolveMinSnapClosedForm(const MinSnapProblem& problem);
 
 enum class SolveStatus { kSolved, kInfeasible, kFailed };

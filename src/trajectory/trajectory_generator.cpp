@@ -102,58 +102,65 @@ TrajectoryResult GenerateTrajectory(const std::vector<Vec3>& path, const Traject
   if (result.waypoints.size() < 2)
     throw std::invalid_argument("GenerateTrajectory: path too short");
 
-  for (int round = 0;; ++round) {
-    std::vector<Vec3>& waypoints = result.waypoints;
-    if (params.use_corridors) waypoints = SplitForCorridors(waypoints, world.box_free);
+  // a singular system (degenerate waypoints or times) is an outcome like an infeasible one
+  try {
+    for (int round = 0;; ++round) {
+      std::vector<Vec3>& waypoints = result.waypoints;
+      if (params.use_corridors) waypoints = SplitForCorridors(waypoints, world.box_free);
 
-    MinSnapProblem problem;
-    problem.waypoints = waypoints;
-    problem.durations = RefineDurations(
-        waypoints, TrapezoidDurations(waypoints, params.max_speed, params.max_accel),
-        params.time_refinement_steps);
-    problem.samples_per_segment = params.samples_per_segment;
-    result.corridors.assign(problem.durations.size(), std::nullopt);
-    if (params.use_corridors) {
-      problem.corridors.resize(problem.durations.size());
-      for (size_t i = 0; i + 1 < waypoints.size(); ++i) {
-        result.corridors[i] =
-            GrowCorridor(waypoints[i], waypoints[i + 1], world.box_free, params.corridor_growth);
-        if (result.corridors[i]) {
-          problem.corridors[i] = ShrinkCorridor(*result.corridors[i], waypoints[i],
-                                                waypoints[i + 1], params.corridor_margin);
+      MinSnapProblem problem;
+      problem.waypoints = waypoints;
+      problem.durations = RefineDurations(
+          waypoints, TrapezoidDurations(waypoints, params.max_speed, params.max_accel),
+          params.time_refinement_steps);
+      problem.samples_per_segment = params.samples_per_segment;
+      result.corridors.assign(problem.durations.size(), std::nullopt);
+      if (params.use_corridors) {
+        problem.corridors.resize(problem.durations.size());
+        for (size_t i = 0; i + 1 < waypoints.size(); ++i) {
+          result.corridors[i] =
+              GrowCorridor(waypoints[i], waypoints[i + 1], world.box_free, params.corridor_growth);
+          if (result.corridors[i]) {
+            problem.corridors[i] = ShrinkCorridor(*result.corridors[i], waypoints[i],
+                                                  waypoints[i + 1], params.corridor_margin);
+          }
         }
+        const MinSnapSolution solution = SolveMinSnapIpopt(problem, params.ipopt);
+        result.stats.solver_message = solution.message;
+        if (solution.status != SolveStatus::kSolved) {
+          result.status = solution.status == SolveStatus::kInfeasible
+                              ? TrajectoryStatus::kInfeasible
+                              : TrajectoryStatus::kFailed;
+          break;
+        }
+        result.trajectory = solution.trajectory;
+      } else {
+        result.trajectory = SolveMinSnapClosedForm(problem);
+        result.stats.solver_message = "closed form";
       }
-      const MinSnapSolution solution = SolveMinSnapIpopt(problem, params.ipopt);
-      result.stats.solver_message = solution.message;
-      if (solution.status != SolveStatus::kSolved) {
-        result.status = solution.status == SolveStatus::kInfeasible ? TrajectoryStatus::kInfeasible
-                                                                    : TrajectoryStatus::kFailed;
+      ScaleToLimits(params.max_speed, params.max_accel, params.check_step, &result.trajectory);
+
+      // collision-aware refinement: the segment that leaves free space gets its midpoint
+      const std::optional<double> hit =
+          FirstCollisionTime(result.trajectory, world, params.check_step);
+      if (!hit) {
+        result.status = TrajectoryStatus::kSolved;
         break;
       }
-      result.trajectory = solution.trajectory;
-    } else {
-      result.trajectory = SolveMinSnapClosedForm(problem);
-      result.stats.solver_message = "closed form";
+      if (round >= params.max_refinements) {
+        result.status = TrajectoryStatus::kCollides;
+        break;
+      }
+      const std::vector<double> knots = result.trajectory.KnotTimes();
+      size_t segment = 0;
+      while (segment + 2 < knots.size() && knots[segment + 1] < *hit) ++segment;
+      waypoints.insert(waypoints.begin() + static_cast<long>(segment) + 1,
+                       0.5 * (waypoints[segment] + waypoints[segment + 1]));
+      ++result.stats.refinements;
     }
-    ScaleToLimits(params.max_speed, params.max_accel, params.check_step, &result.trajectory);
-
-    // collision-aware refinement: the segment that leaves free space gets its midpoint
-    const std::optional<double> hit =
-        FirstCollisionTime(result.trajectory, world, params.check_step);
-    if (!hit) {
-      result.status = TrajectoryStatus::kSolved;
-      break;
-    }
-    if (round >= params.max_refinements) {
-      result.status = TrajectoryStatus::kCollides;
-      break;
-    }
-    const std::vector<double> knots = result.trajectory.KnotTimes();
-    size_t segment = 0;
-    while (segment + 2 < knots.size() && knots[segment + 1] < *hit) ++segment;
-    waypoints.insert(waypoints.begin() + static_cast<long>(segment) + 1,
-                     0.5 * (waypoints[segment] + waypoints[segment + 1]));
-    ++result.stats.refinements;
+  } catch (const SingularSystem& e) {
+    result.status = TrajectoryStatus::kFailed;
+    result.stats.solver_message = e.what();
   }
 
   result.stats.segments = static_cast<int>(result.waypoints.size()) - 1;

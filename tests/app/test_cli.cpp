@@ -9,6 +9,7 @@
 #include "cli_runner.h"
 #include "common/error.h"
 #include "sim/simulation.h"
+#include "summary_json.h"
 #include "test_support.h"
 
 namespace aerobox {
@@ -138,6 +139,36 @@ TEST_CASE("plan writes path.csv, exits 3 without a path and 2 for unusable endpo
   CHECK(unwritable.err.find("cannot create the output folder") != std::string::npos);
 }
 
+TEST_CASE("fly checks every option before any work: nothing is planned or written") {
+  const TempDir dir;
+  const std::string room = dir.Write("room.txt", "boundary 0 0 0 6 6 2\nblock 2.5 0 0 3 4.5 2\n");
+  const std::string out = (dir.path() / "out").string();
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--camera", "nosuch"}, "--camera: expected chase, overview or top, got 'nosuch'"},
+      {{"--size", "641x480"}, "--size: 641x480: a video needs even sides"},
+      {{"--size", "4000x3000"}, "--size: 4000x3000 is outside"},
+      {{"--size", "640x480x"}, "--size: expected WxH"},
+      {{"--fps", "0"}, "--fps:"},
+      {{"--speed", "-1"}, "--speed:"},
+      {{"--quality", "ugly"}, "--quality: expected fast or pretty"}};
+  for (const auto& [extra, message] : cases) {
+    std::vector<std::string> args = {"fly",   room,      "--start", "1,1,0", "--goal",
+                                     "5,1,1", "--quiet", "--out",   out};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const Run run = Aerobox(args);
+    CAPTURE(extra[1]);
+    CAPTURE(run.err);
+    CHECK(run.code == kExitBadInput);
+    CHECK(run.err.find(message) != std::string::npos);
+    CHECK(run.out.empty());
+    CHECK_FALSE(fs::exists(out));  // not even the output folder
+  }
+  // an odd size is fine without a video (only PNGs are written)
+  const Run odd = Aerobox({"fly", room, "--start", "1,1,0", "--goal", "5,1,1", "--quiet", "--out",
+                           out, "--no-video", "--size", "321x241"});
+  CHECK(odd.code == kExitReachedGoal);
+}
+
 TEST_CASE("model writes the vehicle's MJCF") {
   const Run run = Aerobox({"model"});
   CHECK(run.code == kExitReachedGoal);
@@ -170,11 +201,11 @@ TEST_CASE("fly: plans, flies and writes path, trajectory, telemetry and summary"
                         "vz_des,ax_des,ay_des,az_des,f1,f2,f3,f4,pos_err,",
                         0) == 0);
   CHECK(std::count(telemetry.begin(), telemetry.end(), '\n') > 100);
-  const std::string summary = testing::ReadFile(std::filesystem::path(out) / "summary.json");
-  CHECK(summary.find("\"status\": \"reached goal\"") != std::string::npos);
-  CHECK(summary.find("\"tracking_rms_m\"") != std::string::npos);
-  CHECK(summary.find("\"min_clearance_m\"") != std::string::npos);
-  CHECK(summary.find("\"seed\": 1") != std::string::npos);
+  const nlohmann::json summary = testing::ReadSummary(std::filesystem::path(out) / "summary.json");
+  CHECK(summary["status"] == "reached goal");
+  CHECK(testing::SummaryNumber(summary, "tracking_rms_m") < 0.06);
+  CHECK(testing::SummaryNumber(summary, "min_clearance_m") > 0);
+  CHECK(summary["seed"] == 1);
 
   // the same seed gives byte-identical path, trajectory and telemetry
   const std::string again = (dir.path() / "again").string();
@@ -228,10 +259,7 @@ TEST_CASE("fly --show-tree: 3 s of the tree growing open the video, and --trajec
     args.insert(args.end(), extra.begin(), extra.end());
     const Run run = Aerobox(args);
     REQUIRE(run.code == kExitReachedGoal);
-    const std::string summary = testing::ReadFile(dir.path() / name / "summary.json");
-    const size_t at = summary.find("\"video_frames\": ");
-    REQUIRE(at != std::string::npos);
-    return std::stoi(summary.substr(at + 16));
+    return testing::ReadSummary(dir.path() / name / "summary.json")["video_frames"].get<int>();
   };
   CHECK(frames({"--show-tree"}, "tree") == frames({}, "plain") + 90);  // 3 s at 30 fps
   const Run bad = Aerobox({"fly", scenario, "--no-video", "--trajectory", "septic"});

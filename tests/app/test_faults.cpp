@@ -13,6 +13,7 @@
 
 #include "app/exit_codes.h"
 #include "cli_runner.h"
+#include "summary_json.h"
 #include "test_support.h"
 
 namespace aerobox {
@@ -68,8 +69,7 @@ TEST_CASE("a non-finite value in the controller: status non-finite, exit 5") {
   const testing::CliRun run = FlyWindow(out.string(), "nonfinite:3");
   CHECK(run.code == kExitFlightFailed);
   CHECK(run.out.find("non-finite state after 3.0") != std::string::npos);
-  const std::string summary = testing::ReadFile(out / "summary.json");
-  CHECK(summary.find("\"flight_status\": \"non-finite state\"") != std::string::npos);
+  CHECK(testing::ReadSummary(out / "summary.json")["flight_status"] == "non-finite state");
   CHECK_FALSE(HasPartialFiles(out));
 }
 
@@ -79,8 +79,7 @@ TEST_CASE("an Ipopt failure: exit 4 with Ipopt's reason") {
   const testing::CliRun run = FlyWindow(out.string(), "ipopt");
   CHECK(run.code == kExitNoTrajectory);
   CHECK(run.out.find("no trajectory (maximum iterations exceeded)") != std::string::npos);
-  const std::string summary = testing::ReadFile(out / "summary.json");
-  CHECK(summary.find("\"status\": \"no feasible trajectory\"") != std::string::npos);
+  CHECK(testing::ReadSummary(out / "summary.json")["status"] == "no feasible trajectory");
   CHECK_FALSE(std::filesystem::exists(out / "telemetry.csv"));
   CHECK_FALSE(HasPartialFiles(out));
 }

@@ -97,3 +97,26 @@ TEST_CASE("lattice planner: out of a narrow shaft between buildings, where no la
 }
 
 }  // namespace aerobox
+
+namespace aerobox {
+
+TEST_CASE("lattice parameters: the message names the field at fault") {
+  LatticeParams params;
+  params.vertical_spacing = 0;
+  CHECK_THROWS_WITH_AS(params.Validate(), doctest::Contains("LatticeParams.vertical_spacing"),
+                       std::invalid_argument);
+  params = LatticeParams();
+  params.max_altitude = params.min_altitude - 1;
+  CHECK_THROWS_WITH_AS(params.Validate(), doctest::Contains("LatticeParams.max_altitude"),
+                       std::invalid_argument);
+  params = LatticeParams();
+  params.shortcut_attempts = -1;
+  CHECK_THROWS_WITH_AS(params.Validate(), doctest::Contains("LatticeParams.shortcut_attempts"),
+                       std::invalid_argument);
+  params = LatticeParams();
+  params.spacing = -2;
+  CHECK_THROWS_WITH_AS(params.Validate(), doctest::Contains("LatticeParams.spacing"),
+                       std::invalid_argument);
+}
+
+}  // namespace aerobox

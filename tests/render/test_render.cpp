@@ -153,3 +153,42 @@ TEST_CASE("an unfinished video leaves no file") {
 }
 
 }  // namespace aerobox
+
+namespace aerobox {
+
+TEST_CASE("a renderer leaves the shared model's visual settings as they were") {
+  Simulation sim = SmallScene(Vec3(1, 1, 1));
+  const int width = sim.model()->vis.global.offwidth;
+  const int height = sim.model()->vis.global.offheight;
+  const int shadow = sim.model()->vis.quality.shadowsize;
+  const int samples = sim.model()->vis.quality.offsamples;
+  {
+    Renderer small(&sim, RenderSettings(160, 120, Quality::kFast));
+    CHECK(sim.model()->vis.global.offwidth == width);
+    CHECK(sim.model()->vis.global.offheight == height);
+    CHECK(sim.model()->vis.quality.shadowsize == shadow);
+    CHECK(sim.model()->vis.quality.offsamples == samples);
+  }
+  // a second renderer on the same model may still be larger than the first one
+  CHECK_NOTHROW(Renderer(&sim, RenderSettings(640, 480, Quality::kFast)));
+}
+
+TEST_CASE("a video whose final rename fails throws once and frees everything once") {
+  const testing::TempDir dir;
+  // the target is a folder: the rename of the finished file onto it fails
+  const std::filesystem::path target = dir.path() / "video.mp4";
+  std::filesystem::create_directories(target / "inside");
+  {
+    VideoEncoder video(target.string(), 64, 48, 10);
+    Image frame;
+    frame.width = 64;
+    frame.height = 48;
+    frame.rgb.assign(64 * 48 * 3, 128);
+    video.AddFrame(frame);
+    CHECK_THROWS_AS(video.Finish(), std::runtime_error);
+  }  // the destructor releases again: every pointer was cleared, nothing is freed twice
+  CHECK_FALSE(std::filesystem::exists(target.string() + ".partial"));
+  CHECK(std::filesystem::is_directory(target));
+}
+
+}  // namespace aerobox

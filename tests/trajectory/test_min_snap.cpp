@@ -208,3 +208,20 @@ TEST_CASE("trapezoid times and the uniform time scale to the limits") {
 }
 
 }  // namespace aerobox
+
+namespace aerobox {
+
+TEST_CASE(
+    "a degenerate system is a status from Ipopt's solve and a typed error from the closed form") {
+  // a segment of 1e-150 s: its basis rows overflow, the KKT system has no finite solution
+  MinSnapProblem problem = ZigZag(3);
+  problem.durations[1] = 1e-150;
+  CHECK_THROWS_AS(SolveMinSnapClosedForm(problem), SingularSystem);
+  problem.corridors.assign(problem.durations.size(), std::nullopt);
+  MinSnapSolution solution;
+  CHECK_NOTHROW(solution = SolveMinSnapIpopt(problem));
+  CHECK(solution.status == SolveStatus::kFailed);
+  CHECK(solution.message.find("minimum-snap system") != std::string::npos);
+}
+
+}  // namespace aerobox
