@@ -10,7 +10,7 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
   cmake -S "$top" -B "$build" -DCMAKE_BUILD_TYPE=Release -DAEROBOX_WITH_OMPL=ON \
         -DAEROBOX_BUILD_TESTS=OFF
 fi
-cmake --build "$build" --parallel "$(nproc)" --target aerobox
+cmake --build "$build" --parallel "$(nproc)" --target aerobox aerobox-bench
 cd "$top"
 # the city section reads the FCND map when the shared maps sit beside the repository
 city=$top/../shared/maps/fcnd/colliders.csv

@@ -1,23 +1,23 @@
 #include "app/cli.h"
 
+#include <spawn.h>
+#include <sys/wait.h>
+
 #include <CLI/CLI.hpp>
+#include <cerrno>
+#include <csignal>
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
 
-#include "app/city_benchmark.h"
 #include "app/compare_job.h"
 #include "app/exit_codes.h"
 #include "app/files.h"
-#include "app/flight_benchmark.h"
 #include "app/fly_job.h"
-#include "app/plan_job.h"
-#include "app/planner_comparison.h"
-#include "app/render_benchmark.h"
-#include "app/scenario.h"
-#include "app/solver_comparison.h"
 #include "common/error.h"
 #include "common/number_format.h"
+#include "mission/plan.h"
+#include "scenario/scenario.h"
 #include "scene/scene_mjcf.h"
 #include "sim/simulation.h"
 #include "telemetry/csv_table.h"
@@ -177,60 +177,32 @@ int RunPlan(const FlightSetup& setup, const std::string& out_dir, std::ostream& 
   return kExitReachedGoal;
 }
 
-int RunBench(const std::string& sections, const std::string& scenes, const std::string& maps,
-             const std::string& city, int seeds, double seconds, std::ostream& out,
-             std::ostream& err) {
-  const auto wanted = [&sections](const char* name) {
-    return sections == "all" ||
-           ("," + sections + ",").find(std::string(",") + name + ",") != std::string::npos;
-  };
-  if (wanted("trajectory")) {
-    out << "## Minimum snap: Ipopt against the closed-form solve (medians of 5 repetitions)\n\n";
-    CompareMinSnapSolvers(out, err);
-    out << "\n";
+// `aerobox bench ARGS...`: the benchmarks are a separate binary, aerobox-bench beside this one,
+// so that the product links neither Google Benchmark nor OMPL. Its exit code is ours.
+int RunBenchBinary(const std::vector<std::string>& args, std::ostream& err) {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  const std::filesystem::path binary = self.parent_path() / "aerobox-bench";
+  if (ec || !std::filesystem::exists(binary)) {
+    err << "aerobox: error: bench: " << binary.string()
+        << " is missing (build the aerobox-bench target)\n";
+    return kExitBadInput;
   }
-  if (wanted("render")) {
-    const std::string window =
-        (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
-    out << "## The video path against bare rendering on the window scene (60 frames, medians of "
-           "3)\n\n";
-    CompareVideoPath(window, out, err);
-    out << "\n";
+  std::vector<std::string> words = {binary.string()};
+  words.insert(words.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& word : words) argv.push_back(word.data());
+  argv.push_back(nullptr);
+  pid_t child = 0;
+  if (posix_spawn(&child, binary.c_str(), nullptr, nullptr, argv.data(), environ) != 0) {
+    err << "aerobox: error: bench: cannot run " << binary.string() << "\n";
+    return kExitUnexpected;
   }
-  if (wanted("flight")) {
-    const std::string window =
-        (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
-    out << "## Closed loop against bare mj_step on the window scene (medians of 5 repetitions)\n\n";
-    CompareClosedLoop(window, out, err);
-    out << "\n";
+  int status = 0;
+  while (waitpid(child, &status, 0) < 0 && errno == EINTR) {
   }
-  if (wanted("city")) {
-    out << "## City scale: the FCND map, 50 queries 600-700 m apart\n\n";
-    if (city.empty()) {
-      out << "(skipped: give the map with --city FILE, e.g. the FCND colliders.csv)\n\n";
-    } else {
-      const std::string window =
-          (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
-      CityBenchmark(city, window, 50, out, err);
-      out << "\n";
-    }
-  }
-  if (!wanted("planning")) return kExitReachedGoal;
-  std::vector<PlanningProblem> problems;
-  std::istringstream names(maps);
-  std::string name;
-  while (std::getline(names, name, ',')) {
-    const std::string scenario = (std::filesystem::path(scenes) / name / "scenario.toml").string();
-    const FlightSetup setup = LoadFlightSetup(scenario, {});
-    if (!setup.goal) throw InputError({scenario, 0}, "goal", "the benchmark needs a goal");
-    const CollisionWorld world(setup.map, CollisionParams());
-    const auto [start, goal] = ResolveEndpoints(setup.map, world, setup.start, *setup.goal);
-    problems.push_back({name, setup.map, start.used, goal.used});
-  }
-  out << "## RRT*: aerobox against OMPL " << (HaveOmpl() ? "1.5.2" : "(not built)") << ", " << seeds
-      << " seeds, " << seconds << " s each\n\n";
-  ComparePlanners(problems, seeds, seconds, out, err);
-  return kExitReachedGoal;
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  return WIFSIGNALED(status) && WTERMSIG(status) == SIGINT ? kExitInterrupted : kExitUnexpected;
 }
 
 int RunModel(const std::string& output, std::ostream& out) {
@@ -277,28 +249,12 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   plan->add_option("--seed", seed, "random seed (default: the scenario's, else 1)")
       ->each([&seed_given](const std::string&) { seed_given = true; });
 
-  std::string bench_sections = "all";
-  std::string bench_scenes = "scenes";
-  std::string bench_maps = "window,maze,forest,over_under";
-  int bench_seeds = 20;
-  double bench_seconds = 1.0;
+  std::vector<std::string> bench_args;
   CLI::App* bench = app.add_subcommand(
-      "bench", "performance tables: RRT* against OMPL's (when built with AEROBOX_WITH_OMPL)");
-  bench
-      ->add_option("--sections", bench_sections,
-                   "all, or some of: trajectory,flight,render,city,planning")
-      ->capture_default_str();
-  bench->add_option("--scenes", bench_scenes, "folder with the scenes")->capture_default_str();
-  bench->add_option("--maps", bench_maps, "comma-separated scene names")->capture_default_str();
-  std::string bench_city;
-  bench->add_option("--city", bench_city, "the city map for the city section (FCND CSV)")
-      ->check(CLI::ExistingFile);
-  bench->add_option("--seeds", bench_seeds, "runs per planner and map")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 1000));
-  bench->add_option("--seconds", bench_seconds, "time budget of each run [s]")
-      ->capture_default_str()
-      ->check(CLI::Range(0.2, 60.0));
+      "bench", "performance tables (runs aerobox-bench, installed beside aerobox; see its --help)");
+  bench->prefix_command();  // everything after "bench" goes to aerobox-bench as it is
+  bench->set_help_flag();
+  bench->allow_extras();
 
   bool no_video = false;
   CLI::App* fly = app.add_subcommand(
@@ -356,10 +312,7 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   try {
     if (model->parsed()) return RunModel(output, out);
     if (compare->parsed()) return RunCompare(compare_inputs, compare_out, out, err);
-    if (bench->parsed()) {
-      return RunBench(bench_sections, bench_scenes, bench_maps, bench_city, bench_seeds,
-                      bench_seconds, out, err);
-    }
+    if (bench->parsed()) return RunBenchBinary(bench->remaining(), err);
     if (fly->parsed()) {
       fly_options.out_dir = out_dir;
       fly_options.video = !no_video;

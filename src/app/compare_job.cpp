@@ -7,10 +7,10 @@
 
 #include "app/exit_codes.h"
 #include "app/files.h"
-#include "app/flight.h"
-#include "app/plan_job.h"
-#include "app/scenario.h"
 #include "geometry/collision_world.h"
+#include "mission/flight.h"
+#include "mission/plan.h"
+#include "scenario/scenario.h"
 #include "telemetry/csv_table.h"
 
 namespace aerobox {

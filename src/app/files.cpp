@@ -15,17 +15,6 @@
 namespace aerobox {
 namespace fs = std::filesystem;
 
-std::string ReadTextFile(const std::string& path) {
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) throw InputError({path, 0}, "", "is a folder, not a file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({path, 0}, "", std::string("cannot open: ") + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError({path, 0}, "", "could not be read");
-  return text.str();
-}
-
 namespace {
 
 // An injected write failure for this file (see common/fault_injection.h).

@@ -1,13 +1,10 @@
-// The only place aerobox reads and writes files.
+// The only place aerobox writes files (input files are read by scenario/read_file.h).
 #pragma once
 
 #include <cstdio>
 #include <string>
 
 namespace aerobox {
-
-// The whole file; throws InputError naming the file when it cannot be opened or read.
-std::string ReadTextFile(const std::string& path);
 
 // Writes `text` to a temporary file beside `path`, then renames it over `path`, so that `path`
 // is either complete or untouched. Throws InputError naming the file on any failure (and

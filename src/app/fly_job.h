@@ -4,9 +4,7 @@
 #include <ostream>
 #include <string>
 
-#include "app/flight.h"
-#include "app/scenario.h"
-#include "telemetry/csv_table.h"
+#include "scenario/scenario.h"
 
 namespace aerobox {
 
@@ -37,9 +35,5 @@ void ValidateFlyOptions(const FlyOptions& options);
 // input, before anything is written.
 int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& out,
            std::ostream& err);
-
-// telemetry.csv: the header and one row per control step (units in README.md).
-CsvTable TelemetryTable();
-void AddTelemetryRow(const TelemetrySample& sample, CsvTable* table);
 
 }  // namespace aerobox

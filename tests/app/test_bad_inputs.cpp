@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "app/exit_codes.h"
-#include "app/scenario.h"
+#include "scenario/scenario.h"
 #include "cli_runner.h"
 #include "common/error.h"
 #include "test_support.h"

@@ -1,7 +1,7 @@
 // The scenes shipped in scenes/ are current, and every published map becomes a loadable scene.
 #include <doctest/doctest.h>
 
-#include "app/scenario.h"
+#include "scenario/scenario.h"
 #include "sim/mujoco_messages.h"
 #include "sim/simulation.h"
 #include "test_support.h"

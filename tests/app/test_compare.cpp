@@ -7,8 +7,8 @@
 
 #include "app/compare_job.h"
 #include "app/exit_codes.h"
-#include "app/plan_job.h"
-#include "app/scenario.h"
+#include "mission/plan.h"
+#include "scenario/scenario.h"
 #include "test_support.h"
 
 namespace aerobox {

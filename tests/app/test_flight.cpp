@@ -5,7 +5,7 @@
 #include <cmath>
 #include <iostream>
 
-#include "app/flight.h"
+#include "mission/flight.h"
 #include "scene/scene_mjcf.h"
 
 namespace aerobox {

@@ -4,7 +4,7 @@
 #include <random>
 
 #include "../planning/planning_test_util.h"
-#include "app/plan_job.h"
+#include "mission/plan.h"
 #include "common/error.h"
 #include "planning/path_simplify.h"
 #include "test_support.h"

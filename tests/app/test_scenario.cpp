@@ -2,7 +2,7 @@
 
 #include <sstream>
 
-#include "app/scenario.h"
+#include "scenario/scenario.h"
 #include "common/error.h"
 #include "test_support.h"
 

@@ -1,4 +1,4 @@
-#include "app/scenario.h"
+#include "scenario/scenario.h"
 #include "fuzz_target.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,4 +1,4 @@
-#include "app/plan_job.h"
+#include "mission/plan.h"
 
 #include <algorithm>
 #include <chrono>

@@ -12,7 +12,7 @@
 
 #include <chrono>
 
-#include "app/planner_comparison.h"
+#include "bench/planner_comparison.h"
 
 namespace aerobox {
 namespace {

@@ -1,15 +1,14 @@
-#include "app/scenario.h"
+#include "scenario/scenario.h"
 
 #include <toml++/toml.h>
 
 #include <filesystem>
 #include <sstream>
 
-#include "app/files.h"
 #include "common/error.h"
 #include "common/number_format.h"
 #include "map/map_reader.h"
-#include "scene/scene_mjcf.h"
+#include "scenario/read_file.h"
 #include "vehicle/quad_params.h"
 
 namespace aerobox {
@@ -293,15 +292,6 @@ FlightSetup LoadFlightSetup(const std::string& path, const SetupOverrides& overr
     setup.start_where = {map_path, 0};
   }
   return setup;
-}
-
-std::string SceneMjcfFor(const FlightSetup& setup, const std::vector<bool>& keep_boxes) {
-  const QuadParams vehicle;
-  SceneOptions options;
-  options.keep_boxes = keep_boxes;
-  options.vehicle_position = VehicleRestPosition(setup.map, vehicle, setup.start);
-  options.heading_target = setup.goal;
-  return BuildSceneMjcf(setup.map, vehicle, options);
 }
 
 }  // namespace aerobox

@@ -1,4 +1,4 @@
-#include "app/solver_comparison.h"
+#include "bench/solver_comparison.h"
 
 #include <benchmark/benchmark.h>
 
@@ -6,7 +6,7 @@
 #include <map>
 #include <random>
 
-#include "app/benchmark_medians.h"
+#include "bench/benchmark_medians.h"
 #include "trajectory/min_snap.h"
 #include "trajectory/time_allocation.h"
 

@@ -1,4 +1,4 @@
-#include "app/planner_comparison.h"
+#include "bench/planner_comparison.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 // aerobox's own numbers.
 #include <stdexcept>
 
-#include "app/planner_comparison.h"
+#include "bench/planner_comparison.h"
 
 namespace aerobox {
 

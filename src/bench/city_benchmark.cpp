@@ -1,4 +1,4 @@
-#include "app/city_benchmark.h"
+#include "bench/city_benchmark.h"
 
 #include <algorithm>
 #include <chrono>
@@ -6,10 +6,10 @@
 #include <random>
 #include <vector>
 
-#include "app/plan_job.h"
-#include "app/scenario.h"
+#include "mission/plan.h"
 #include "planning/lattice_planner.h"
 #include "planning/path_simplify.h"
+#include "scenario/scenario.h"
 #include "scene/scene_mjcf.h"
 #include "sim/simulation.h"
 

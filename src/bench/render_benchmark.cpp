@@ -1,4 +1,4 @@
-#include "app/render_benchmark.h"
+#include "bench/render_benchmark.h"
 
 #include <benchmark/benchmark.h>
 #include <unistd.h>
@@ -8,10 +8,10 @@
 #include <iomanip>
 #include <map>
 
-#include "app/benchmark_medians.h"
-#include "app/scenario.h"
+#include "bench/benchmark_medians.h"
 #include "render/renderer.h"
 #include "render/video_encoder.h"
+#include "scenario/scenario.h"
 
 namespace aerobox {
 namespace {

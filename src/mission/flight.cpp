@@ -1,4 +1,4 @@
-#include "app/flight.h"
+#include "mission/flight.h"
 
 #include <cmath>
 #include <limits>

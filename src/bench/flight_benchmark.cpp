@@ -1,4 +1,4 @@
-#include "app/flight_benchmark.h"
+#include "bench/flight_benchmark.h"
 
 #include <benchmark/benchmark.h>
 
@@ -9,10 +9,10 @@
 #include <memory>
 #include <vector>
 
-#include "app/benchmark_medians.h"
-#include "app/flight.h"
-#include "app/fly_job.h"
-#include "app/plan_job.h"
+#include "bench/benchmark_medians.h"
+#include "mission/flight.h"
+#include "mission/plan.h"
+#include "mission/telemetry_table.h"
 
 namespace aerobox {
 namespace {

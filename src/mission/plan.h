@@ -4,8 +4,8 @@
 #include <string>
 #include <utility>
 
-#include "app/scenario.h"
 #include "geometry/collision_world.h"
+#include "scenario/scenario.h"
 #include "trajectory/trajectory_generator.h"
 
 namespace aerobox {

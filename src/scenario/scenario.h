@@ -7,9 +7,9 @@
 #include <optional>
 #include <string>
 
-#include "app/planning_settings.h"
 #include "map/map.h"
 #include "map/map_reader.h"
+#include "mission/setup.h"
 
 namespace aerobox {
 
@@ -42,21 +42,6 @@ struct Scenario {
 // Parses scenario text; throws InputError naming the file, line and key at fault.
 Scenario ReadScenario(std::istream& in, const std::string& file);
 
-// A map ready to fly: where start and goal came from is kept for messages and summaries.
-struct FlightSetup {
-  std::string name;
-  Map map;
-  MapFormat map_format = MapFormat::kTxt;
-  Vec3 start = Vec3::Zero();
-  std::string start_origin;  // "command line", "scenario", "map file", "start/goal file", "default"
-  SourceLocation start_where;  // the file and line that gave it, for messages
-  std::optional<Vec3> goal;
-  std::string goal_origin;
-  SourceLocation goal_where;
-  std::uint64_t seed = 1;
-  PlanningSettings planning;
-};
-
 struct SetupOverrides {
   std::optional<Vec3> start;
   std::optional<Vec3> goal;
@@ -68,9 +53,5 @@ struct SetupOverrides {
 // (RBE595's start and goal files). Without any start, the vehicle rests on the floor at the
 // map's DefaultStart(). Throws InputError for any bad file.
 FlightSetup LoadFlightSetup(const std::string& path, const SetupOverrides& overrides);
-
-// The MJCF scene of a set-up: the vehicle rests at the start, the chase camera faces the goal.
-// `keep_boxes`: see SceneOptions (empty: every box of the map).
-std::string SceneMjcfFor(const FlightSetup& setup, const std::vector<bool>& keep_boxes = {});
 
 }  // namespace aerobox

@@ -1,0 +1,121 @@
+// aerobox-bench (run as `aerobox bench`): the performance tables of docs/benchmarks.md, each a
+// measurement of ours against a reference in the same run. A separate binary, so that the
+// product links neither Google Benchmark nor OMPL.
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bench/city_benchmark.h"
+#include "bench/flight_benchmark.h"
+#include "bench/planner_comparison.h"
+#include "bench/render_benchmark.h"
+#include "bench/solver_comparison.h"
+#include "common/error.h"
+#include "geometry/collision_world.h"
+#include "mission/plan.h"
+#include "scenario/scenario.h"
+
+namespace aerobox {
+namespace {
+
+int RunBench(const std::string& sections, const std::string& scenes, const std::string& maps,
+             const std::string& city, int seeds, double seconds, std::ostream& out,
+             std::ostream& err) {
+  const auto wanted = [&sections](const char* name) {
+    return sections == "all" ||
+           ("," + sections + ",").find(std::string(",") + name + ",") != std::string::npos;
+  };
+  if (wanted("trajectory")) {
+    out << "## Minimum snap: Ipopt against the closed-form solve (medians of 5 repetitions)\n\n";
+    CompareMinSnapSolvers(out, err);
+    out << "\n";
+  }
+  if (wanted("render")) {
+    const std::string window =
+        (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
+    out << "## The video path against bare rendering on the window scene (60 frames, medians of "
+           "3)\n\n";
+    CompareVideoPath(window, out, err);
+    out << "\n";
+  }
+  if (wanted("flight")) {
+    const std::string window =
+        (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
+    out << "## Closed loop against bare mj_step on the window scene (medians of 5 repetitions)\n\n";
+    CompareClosedLoop(window, out, err);
+    out << "\n";
+  }
+  if (wanted("city")) {
+    out << "## City scale: the FCND map, 50 queries 600-700 m apart\n\n";
+    if (city.empty()) {
+      out << "(skipped: give the map with --city FILE, e.g. the FCND colliders.csv)\n\n";
+    } else {
+      const std::string window =
+          (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
+      CityBenchmark(city, window, 50, out, err);
+      out << "\n";
+    }
+  }
+  if (!wanted("planning")) return 0;
+  std::vector<PlanningProblem> problems;
+  std::istringstream names(maps);
+  std::string name;
+  while (std::getline(names, name, ',')) {
+    const std::string scenario = (std::filesystem::path(scenes) / name / "scenario.toml").string();
+    const FlightSetup setup = LoadFlightSetup(scenario, {});
+    if (!setup.goal) throw InputError({scenario, 0}, "goal", "the benchmark needs a goal");
+    const CollisionWorld world(setup.map, CollisionParams());
+    const auto [start, goal] = ResolveEndpoints(setup.map, world, setup.start, *setup.goal);
+    problems.push_back({name, setup.map, start.used, goal.used});
+  }
+  out << "## RRT*: aerobox against OMPL " << (HaveOmpl() ? "1.5.2" : "(not built)") << ", " << seeds
+      << " seeds, " << seconds << " s each\n\n";
+  ComparePlanners(problems, seeds, seconds, out, err);
+  return 0;
+}
+
+}  // namespace
+}  // namespace aerobox
+
+int main(int argc, char** argv) {
+  CLI::App app("aerobox bench: performance tables, each against a reference in the same run",
+               "aerobox bench");
+  std::string bench_sections = "all";
+  std::string bench_scenes = "scenes";
+  std::string bench_maps = "window,maze,forest,over_under";
+  int bench_seeds = 20;
+  double bench_seconds = 1.0;
+  app.add_option("--sections", bench_sections,
+                 "all, or some of: trajectory,flight,render,city,planning")
+      ->capture_default_str();
+  app.add_option("--scenes", bench_scenes, "folder with the scenes")->capture_default_str();
+  app.add_option("--maps", bench_maps, "comma-separated scene names")->capture_default_str();
+  std::string bench_city;
+  app.add_option("--city", bench_city, "the city map for the city section (FCND CSV)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--seeds", bench_seeds, "runs per planner and map")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
+  app.add_option("--seconds", bench_seconds, "time budget of each run [s]")
+      ->capture_default_str()
+      ->check(CLI::Range(0.2, 60.0));
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    return app.exit(error) == 0 ? 0 : 2;
+  }
+  try {
+    return aerobox::RunBench(bench_sections, bench_scenes, bench_maps, bench_city, bench_seeds,
+                             bench_seconds, std::cout, std::cerr);
+  } catch (const aerobox::InputError& error) {
+    std::cerr << "aerobox bench: error: " << error.what() << "\n";
+    return 2;
+  } catch (const std::exception& error) {
+    std::cerr << "aerobox bench: unexpected error: " << error.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,35 @@
+// What a flight needs to know about its world: the map, where it starts and ends (and where
+// those came from, for messages), the seed and the planning settings.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "map/map.h"
+#include "map/map_reader.h"
+#include "mission/planning_settings.h"
+
+namespace aerobox {
+
+// A map ready to fly: where start and goal came from is kept for messages and summaries.
+struct FlightSetup {
+  std::string name;
+  Map map;
+  MapFormat map_format = MapFormat::kTxt;
+  Vec3 start = Vec3::Zero();
+  std::string start_origin;  // "command line", "scenario", "map file", "start/goal file", "default"
+  SourceLocation start_where;  // the file and line that gave it, for messages
+  std::optional<Vec3> goal;
+  std::string goal_origin;
+  SourceLocation goal_where;
+  std::uint64_t seed = 1;
+  PlanningSettings planning;
+};
+
+// The MJCF scene of a set-up: the vehicle rests at the start, the chase camera faces the goal.
+// `keep_boxes`: see SceneOptions (empty: every box of the map).
+std::string SceneMjcfFor(const FlightSetup& setup, const std::vector<bool>& keep_boxes = {});
+
+}  // namespace aerobox
