@@ -71,17 +71,18 @@ Row FlyMethod(const FlightSetup& setup, const PlanOutcome& plan, TrajectoryMetho
   row.max_accel = trajectory.MaxNorm(kAcceleration, 0.01);
 
   Simulation sim = Simulation::FromXml(SceneMjcfFor(setup), setup.name + " (scene)");
-  PlaceVehicleAtStart(setup.map, setup.start, plan.start.used, &sim);
-  const QuadParams vehicle;
-  const FlightParams params;
-  const double sample_period = sim.timestep() * params.cascade.outer_divider;  // [s]
+  const QuadParams& vehicle = setup.vehicle;
+  PlaceVehicleAtStart(setup.map, vehicle, setup.start, plan.start.used, &sim);
+  const FlightParams& params = setup.flight;
+  const double sample_period = 1.0 / setup.controller.rate;  // [s] between samples
   const FlightResult flight = FlyTrajectory(
-      ReferenceOf(trajectory), params, vehicle,
+      ReferenceOf(trajectory), params, vehicle, setup.controller,
       [&world](const Vec3& p) { return world.Clearance(p); },
       [&](const TelemetrySample& s) {
-        const Vec4& f = s.control.mixer.thrusts;
+        const Vec4& f = s.inner.mixer.thrusts;
         // a rotor at either end of its range: the mixer has no authority left there
-        if ((f.array() >= vehicle.max_rotor_thrust - 1e-9).any() || (f.array() <= 1e-9).any())
+        if ((f.array() >= vehicle.MaxRotorThrust() - 1e-9).any() ||
+            (f.array() <= vehicle.MinRotorThrust() + 1e-9).any())
           row.saturated += sample_period;
       },
       &sim);
@@ -127,8 +128,7 @@ int RunCompare(const std::vector<std::string>& scenarios, const std::string& out
       out << "| " << setup.name << " | (no path or trajectory) | | | | | | | | | |\n";
       continue;
     }
-    const QuadParams vehicle;
-    const CollisionWorld world(setup.map, CollisionParams{vehicle.collision_size, 0.0});
+    const CollisionWorld world(setup.map, CollisionParams{setup.vehicle.collision_size, 0.0});
     for (const TrajectoryMethod method : kMethods) {
       const Row row = FlyMethod(setup, plan, method, world);
       out << std::setprecision(4) << "| " << setup.name << " | " << row.method << " | " << row.snap

@@ -95,7 +95,7 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
   const auto file = [&folder](const char* name) { return (fs::path(folder) / name).string(); };
 
   ValidateFlyOptions(options);
-  const QuadParams vehicle;
+  const QuadParams& vehicle = setup.vehicle;
   std::unique_ptr<Simulation> sim;
   std::unique_ptr<Renderer> renderer;
   const bool city = IsCityScale(setup.map);
@@ -183,12 +183,14 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
   }
 
   // fly: the vehicle rests at the start (on the floor when the start is at floor level)
-  PlaceVehicleAtStart(setup.map, setup.start, plan.start.used, sim.get());
+  PlaceVehicleAtStart(setup.map, vehicle, setup.start, plan.start.used, sim.get());
   const CollisionWorld world(setup.map, CollisionParams{vehicle.collision_size, 0.0});
   // telemetry is streamed to telemetry.csv.partial as the vehicle flies, in blocks of rows, and
   // renamed when the flight is over
   StreamingFile telemetry_file(file("telemetry.csv"));
-  CsvTable telemetry = TelemetryTable();
+  const std::unique_ptr<Controller> controller = MakeController(setup.controller, vehicle);
+  const std::vector<std::string> controller_columns = controller->ReportColumns();
+  CsvTable telemetry = TelemetryTable(controller_columns);
   const size_t header_length = telemetry.Text().size();
   telemetry_file.Append(telemetry.Text());  // the header; blocks of rows follow
 
@@ -253,7 +255,7 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
     AddTelemetryRow(s, &telemetry);
     if (telemetry.rows() >= 1000) {  // 4 s of flight a block
       telemetry_file.Append(telemetry.Text().substr(header_length));
-      telemetry = TelemetryTable();
+      telemetry = TelemetryTable(controller_columns);
     }
     if (overlay.trail.empty() || (overlay.trail.back() - s.state.p_W).norm() > 0.02) {
       overlay.trail.push_back(s.state.p_W);
@@ -285,9 +287,14 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
   };
   FlightResult flight;
   try {
-    flight = FlyTrajectory(
-        ReferenceOf(trajectory.trajectory), FlightParams(), vehicle,
-        [&world](const Vec3& p) { return world.Clearance(p); }, on_sample, sim.get());
+    FlightLoop loop;
+    loop.vehicle = &vehicle;
+    loop.controller = controller.get();
+    loop.control_rate = setup.controller.rate;
+    loop.inner = setup.controller.inner;
+    loop.clearance = [&world](const Vec3& p) { return world.Clearance(p); };
+    loop.telemetry = on_sample;
+    flight = FlyTrajectory(ReferenceOf(trajectory.trajectory), setup.flight, loop, sim.get());
   } catch (const Interrupted&) {
     if (show_progress) err << "\n";
     err << "aerobox: interrupted: no video, telemetry or summary written\n";
@@ -313,7 +320,7 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
       .Add("min_clearance_m", flight.min_clearance)
       .Add("collisions", flight.status == FlightStatus::kCollision ? 1 : 0)
       .Add("collision_with", flight.obstacle)
-      .Add("telemetry_rate_hz", 1.0 / (sim->timestep() * FlightParams().cascade.outer_divider))
+      .Add("telemetry_rate_hz", flight.control_rate)
       .Add("video_frames", frames)
       .Add("video_fps", options.fps);
 

@@ -67,7 +67,7 @@ int RunBench(const std::string& sections, const std::string& scenes, const std::
     const std::string scenario = (std::filesystem::path(scenes) / name / "scenario.toml").string();
     const FlightSetup setup = LoadFlightSetup(scenario, {});
     if (!setup.goal) throw InputError({scenario, 0}, "goal", "the benchmark needs a goal");
-    const CollisionWorld world(setup.map, CollisionParams());
+    const CollisionWorld world(setup.map, setup.PlannerCollision());
     const auto [start, goal] = ResolveEndpoints(setup.map, world, setup.start, *setup.goal);
     problems.push_back({name, setup.map, start.used, goal.used});
   }

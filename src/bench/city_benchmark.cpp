@@ -48,7 +48,7 @@ void CityBenchmark(const std::string& city, const std::string& window, int queri
   FlightSetup setup = LoadFlightSetup(city, {});
   setup.planning.trajectory.max_speed = 8.0;  // a Tello's top speed
   setup.planning.trajectory.max_accel = 4.0;
-  const CollisionWorld world(setup.map, setup.planning.collision);
+  const CollisionWorld world(setup.map, setup.PlannerCollision());
   const Validity validity{
       [&world](const Vec3& p) { return world.IsPointFree(p); },
       [&world](const Vec3& a, const Vec3& b) { return world.IsSegmentFree(a, b); }};

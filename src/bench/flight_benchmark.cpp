@@ -37,7 +37,7 @@ void CompareClosedLoop(const std::string& scenario, std::ostream& out, std::ostr
     return;
   }
   const std::string xml = SceneMjcfFor(setup);
-  const QuadParams vehicle;
+  const QuadParams& vehicle = setup.vehicle;
   const Reference full = ReferenceOf(plan.trajectory->trajectory);
   const CollisionWorld world(setup.map, CollisionParams{vehicle.collision_size, 0.0});
 
@@ -67,7 +67,8 @@ void CompareClosedLoop(const std::string& scenario, std::ostream& out, std::ostr
     if (with_telemetry) {
       sink = [telemetry](const TelemetrySample& s) { AddTelemetryRow(s, telemetry); };
     }
-    return FlyTrajectory(window_reference(w), params, vehicle, clearance, sink, sim);
+    return FlyTrajectory(window_reference(w), params, vehicle, setup.controller, clearance, sink,
+                         sim);
   };
 
   // bare: each window's recorded controls replayed open loop with mj_step alone, so MuJoCo

@@ -4,46 +4,37 @@
 
 namespace aerobox {
 
-void CascadeParams::Validate() const {
-  position.Validate();
-  attitude.Validate();
-  rate.Validate();
-  if (!(step > 0) || outer_divider < 1) {
-    throw std::invalid_argument("CascadeParams: step must be > 0 and outer_divider >= 1");
-  }
+CascadeController::CascadeController(const PositionControlParams& params, double period,
+                                     double mass)
+    : position_(params, mass), period_(period) {
+  if (!(period > 0)) throw std::invalid_argument("CascadeController: period must be > 0");
+  last_.thrust = mass * kGravity;
 }
 
-CascadeController::CascadeController(const CascadeParams& params, const QuadParams& vehicle)
-    : params_(params),
-      position_(params.position, vehicle.mass),
-      attitude_(params.attitude),
-      rate_(params.rate, vehicle.inertia),
-      mixer_(vehicle) {
-  params_.Validate();
-  last_attitude_.thrust = vehicle.mass * kGravity;
-}
-
-bool CascadeController::Update(const PositionSetpoint& setpoint, const State& state,
-                               CascadeOutput* out) {
-  *out = CascadeOutput();
-  out->outer_step = steps_ % params_.outer_divider == 0;
-  ++steps_;
-  const double outer_dt = params_.step * params_.outer_divider;
-  bool ok = true;
-  if (out->outer_step) {
-    ok = position_.Update(setpoint, state.p_W, state.v_W, state.q_WB, outer_dt, &last_attitude_);
-  }
-  out->attitude = last_attitude_;
-  ok = ok && attitude_.Update(state.q_WB, last_attitude_.q_WB, &out->rate_setpoint_B);
-  ok =
-      ok && rate_.Update(out->rate_setpoint_B, state.w_B, params_.step, saturated_, &out->torque_B);
-  ok = ok && mixer_.Mix(last_attitude_.thrust, out->torque_B, &out->mixer);
-  if (!ok) {
-    out->mixer = MixerOutput();  // zero thrust: the caller decides what a failure means
+bool CascadeController::Update(double, const State& state, const FlatOutput& setpoint,
+                               ControlCommand* command) {
+  PositionSetpoint target;
+  target.p_W = setpoint.p_W;
+  target.v_W = setpoint.v_W;
+  target.a_W = setpoint.a_W;
+  target.yaw = setpoint.yaw;
+  if (!state.w_B.allFinite() ||
+      !position_.Update(target, state.p_W, state.v_W, state.q_WB, period_, &last_)) {
     return false;
   }
-  saturated_ = out->mixer.saturated();
+  command->level = CommandLevel::kThrustAttitude;
+  command->thrust = last_.thrust;
+  command->q_WB = last_.q_WB;
   return true;
+}
+
+std::vector<std::string> CascadeController::ReportColumns() const {
+  return {"vx_sp", "vy_sp", "vz_sp", "ax_sp", "ay_sp", "az_sp"};
+}
+
+void CascadeController::Report(std::vector<double>* values) const {
+  *values = {last_.v_W.x(), last_.v_W.y(), last_.v_W.z(),
+             last_.a_W.x(), last_.a_W.y(), last_.a_W.z()};
 }
 
 }  // namespace aerobox

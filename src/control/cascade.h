@@ -1,51 +1,32 @@
-// The whole cascade at its loop rates: position and velocity every `outer_divider` steps,
-// attitude, rates and mixer every step. Pure math: state in, rotor thrusts out.
+// PX4's multicopter cascade as a Controller: position P -> velocity PID -> thrust vector ->
+// collective thrust and attitude (position_control.h), at the controller's rate. The attitude
+// and rate loops and the mixer below it are aerobox's inner loops (inner_loops.h), at the
+// physics rate, as on PX4 where they run faster than the position loop.
 #pragma once
 
-#include "common/state.h"
-#include "control/attitude_control.h"
-#include "control/mixer.h"
+#include "control/controller.h"
 #include "control/position_control.h"
-#include "control/rate_control.h"
 
 namespace aerobox {
 
-struct CascadeParams {
-  PositionControlParams position;
-  AttitudeControlParams attitude;
-  RateControlParams rate;
-  double step = 0.001;    // [s] of the inner loops (the physics step)
-  int outer_divider = 4;  // position loop every 4 steps: 250 Hz at a 1 ms step
-
-  void Validate() const;
-};
-
-// Everything one step computed, for telemetry.
-struct CascadeOutput {
-  AttitudeSetpoint attitude;  // from the last outer-loop step
-  Vec3 rate_setpoint_B = Vec3::Zero();
-  Vec3 torque_B = Vec3::Zero();
-  MixerOutput mixer;
-  bool outer_step = false;  // whether the position loop ran in this step
-};
-
-class CascadeController {
+class CascadeController : public Controller {
  public:
-  CascadeController(const CascadeParams& params, const QuadParams& vehicle);
+  // `period` [s] between updates (the controller's rate); throws std::invalid_argument for bad
+  // parameters.
+  CascadeController(const PositionControlParams& params, double period, double mass);
 
-  // One inner-loop step. Returns false when any stage rejected its input (non-finite state or
-  // setpoint): `out` then commands zero thrust. Never throws.
-  bool Update(const PositionSetpoint& setpoint, const State& state, CascadeOutput* out);
+  bool Update(double t, const State& state, const FlatOutput& setpoint,
+              ControlCommand* command) override;
+
+  // vx_sp, vy_sp, vz_sp [m/s]: the velocity setpoint after the position loop;
+  // ax_sp, ay_sp, az_sp [m/s^2]: the acceleration the velocity loop asks for (tilt-limited).
+  std::vector<std::string> ReportColumns() const override;
+  void Report(std::vector<double>* values) const override;
 
  private:
-  CascadeParams params_;
   PositionController position_;
-  AttitudeController attitude_;
-  RateController rate_;
-  Mixer mixer_;
-  AttitudeSetpoint last_attitude_;
-  bool saturated_ = false;
-  long steps_ = 0;
+  double period_;
+  AttitudeSetpoint last_;
 };
 
 }  // namespace aerobox

@@ -1,7 +1,7 @@
 // Collective thrust and body torques -> four rotor thrusts, through the inverse of the
 // allocation matrix (vehicle/quad_params.h). When the rotors cannot deliver all of it, thrust
 // comes first, then roll and pitch, then yaw: each is scaled down as far as needed to keep
-// every rotor within [0, max].
+// every rotor within [min, max].
 #pragma once
 
 #include "common/types.h"
@@ -10,7 +10,7 @@
 namespace aerobox {
 
 struct MixerOutput {
-  Vec4 thrusts = Vec4::Zero();    // [N], each in [0, max_rotor_thrust]
+  Vec4 thrusts = Vec4::Zero();    // [N], each within the vehicle's rotor limits
   double roll_pitch_scale = 1.0;  // fraction of the roll/pitch torque delivered
   double yaw_scale = 1.0;         // fraction of the yaw torque delivered
   bool saturated() const { return roll_pitch_scale < 1.0 || yaw_scale < 1.0; }
@@ -25,6 +25,7 @@ class Mixer {
 
  private:
   Mat4 inverse_;  // rotor thrusts per [thrust, roll, pitch, yaw]
+  double min_rotor_thrust_;
   double max_rotor_thrust_;
 };
 

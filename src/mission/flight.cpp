@@ -12,11 +12,15 @@
 namespace aerobox {
 
 void FlightParams::Validate() const {
-  cascade.Validate();
-  if (!(settle_time >= 0) || !(goal_tolerance > 0) || !(goal_speed > 0) ||
-      !(flyaway_distance > 0)) {
-    throw std::invalid_argument("FlightParams: times and tolerances must be positive");
-  }
+  const auto fail = [](const char* field, double value) {
+    throw std::invalid_argument(std::string("FlightParams.") + field +
+                                " out of range: " + FormatNumber(value));
+  };
+  if (!(settle_time >= 0 && std::isfinite(settle_time))) fail("settle_time", settle_time);
+  if (!(goal_tolerance > 0 && std::isfinite(goal_tolerance)))
+    fail("goal_tolerance", goal_tolerance);
+  if (!(goal_speed > 0 && std::isfinite(goal_speed))) fail("goal_speed", goal_speed);
+  if (!(flyaway_distance > 0)) fail("flyaway_distance", flyaway_distance);
 }
 
 const char* ToString(FlightStatus status) {
@@ -31,6 +35,8 @@ const char* ToString(FlightStatus status) {
       return "non-finite state";
     case FlightStatus::kFlyAway:
       return "fly-away";
+    case FlightStatus::kSimulationWarning:
+      return "simulation warning";
   }
   return "?";
 }
@@ -41,8 +47,8 @@ Reference ReferenceOf(const PiecewiseTrajectory& trajectory) {
           }};
 }
 
-void PlaceVehicleAtStart(const Map& map, const Vec3& requested, const Vec3& used, Simulation* sim) {
-  const QuadParams vehicle;
+void PlaceVehicleAtStart(const Map& map, const QuadParams& vehicle, const Vec3& requested,
+                         const Vec3& used, Simulation* sim) {
   const Vec3 rest = VehicleRestPosition(map, vehicle, requested);
   if (rest.z() > map.bounds.min.z() + 0.5 * vehicle.collision_size.z() + 1e-9) {
     sim->SetVehicleState(State{used, Vec3::Zero(), Quat::Identity(), Vec3::Zero()});
@@ -50,17 +56,35 @@ void PlaceVehicleAtStart(const Map& map, const Vec3& requested, const Vec3& used
   }
 }
 
+namespace {
+
+// How many physics steps of `step` [s] make one control period at `rate` [Hz].
+int ControlDivider(double rate, double step) {
+  const double steps = 1.0 / (rate * step);
+  const long rounded = std::lround(steps);
+  if (!(rate > 0) || rounded < 1 || std::abs(steps - static_cast<double>(rounded)) > 1e-6) {
+    throw std::invalid_argument("the controller's rate " + FormatNumber(rate) +
+                                " Hz must divide the physics rate " + FormatNumber(1.0 / step) +
+                                " Hz");
+  }
+  return static_cast<int>(rounded);
+}
+
+}  // namespace
+
 FlightResult FlyTrajectory(const Reference& reference, const FlightParams& params,
-                           const QuadParams& vehicle,
-                           const std::function<double(const Vec3&)>& clearance,
-                           const std::function<void(const TelemetrySample&)>& telemetry,
-                           Simulation* sim) {
+                           const FlightLoop& loop, Simulation* sim) {
   params.Validate();
-  CascadeParams cascade_params = params.cascade;
-  cascade_params.step = sim->timestep();
-  CascadeController cascade(cascade_params, vehicle);
+  if (loop.vehicle == nullptr || loop.controller == nullptr) {
+    throw std::invalid_argument("FlyTrajectory: no vehicle or no controller");
+  }
+  const double step = sim->timestep();
+  const int divider = ControlDivider(loop.control_rate, step);
+  InnerLoops inner(loop.inner, *loop.vehicle);
+  Controller& controller = *loop.controller;
   FlightResult result;
   result.min_clearance = std::numeric_limits<double>::infinity();
+  result.control_rate = loop.control_rate;
 
   const double duration = reference.duration;
   const double end_time = duration + params.settle_time;
@@ -81,8 +105,12 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
     if (!ParseNumber(*at, &nan_from)) nan_from = 0.0;
   }
 
+  ControlCommand command;
+  InnerOutput inner_out;
+  std::vector<double> report;
+  sim->TakeNewWarnings();  // what loading and placing raised is not the flight's
   const double t0 = sim->time();
-  while (true) {
+  for (long k = 0;; ++k) {
     const double t = sim->time() - t0;
     const State state = sim->VehicleState();
     if (!state.p_W.allFinite() || !state.v_W.allFinite() || !state.q_WB.coeffs().allFinite() ||
@@ -91,32 +119,47 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
       break;
     }
 
-    PositionSetpoint setpoint;
+    // the setpoint: the reference's flat outputs, its end held after it
+    FlatOutput setpoint;
     setpoint.p_W = reference.evaluate(std::min(t, duration), kPosition);
     if (t < duration) {
       setpoint.v_W = reference.evaluate(t, kVelocity);
       setpoint.a_W = reference.evaluate(t, kAcceleration);
+      setpoint.j_W = reference.evaluate(t, kJerk);
+      setpoint.s_W = reference.evaluate(t, kSnap);
     }
-    if (params.face_travel && setpoint.v_W.head<2>().norm() > 0.2) {
+    const double speed_xy = setpoint.v_W.head<2>().norm();
+    if (params.face_travel && speed_xy > 0.2) {
       yaw = std::atan2(setpoint.v_W.y(), setpoint.v_W.x());
+      setpoint.yaw_rate =
+          (setpoint.v_W.x() * setpoint.a_W.y() - setpoint.v_W.y() * setpoint.a_W.x()) /
+          (speed_xy * speed_xy);
     }
     setpoint.yaw = yaw;
     if (t >= nan_from) setpoint.p_W.x() = std::numeric_limits<double>::quiet_NaN();
 
-    CascadeOutput control;
-    if (!cascade.Update(setpoint, state, &control)) {
+    // the controller at its rate, the inner loops every step
+    const bool control_step = k % divider == 0;
+    if (control_step && !controller.Update(t, state, setpoint, &command)) {
+      result.status = FlightStatus::kNonFinite;
+      break;
+    }
+    if (!inner.Run(command, state, step, &inner_out)) {
       result.status = FlightStatus::kNonFinite;
       break;
     }
     const double error = (state.p_W - setpoint.p_W).norm();
-    if (control.outer_step) {
+    if (control_step) {
       squared_error_sum += error * error;
       ++samples;
       result.max_error = std::max(result.max_error, error);
-      const double c = clearance ? clearance(state.p_W) : std::numeric_limits<double>::infinity();
+      const double c =
+          loop.clearance ? loop.clearance(state.p_W) : std::numeric_limits<double>::infinity();
       result.min_clearance = std::min(result.min_clearance, c);
-      if (telemetry) {
-        telemetry({t, state, setpoint, control, sim->RotorThrusts(), error, c});
+      if (loop.telemetry) {
+        controller.Report(&report);
+        loop.telemetry(
+            {t, state, setpoint, command, inner_out, sim->RotorThrusts(), error, c, report});
       }
     }
     if (error > params.flyaway_distance) {
@@ -133,8 +176,15 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
       break;
     }
 
-    sim->Step(control.mixer.thrusts);
+    sim->Step(inner_out.mixer.thrusts);
     ++result.steps;
+    // a warning means MuJoCo changed or distrusts the state (it resets the data after a bad
+    // acceleration): nothing after it can be trusted
+    result.message = sim->TakeNewWarnings();
+    if (!result.message.empty()) {
+      result.status = FlightStatus::kSimulationWarning;
+      break;
+    }
     const std::vector<VehicleContact> contacts = sim->VehicleContacts();
     bool hit = false;
     for (const VehicleContact& contact : contacts) {
@@ -152,6 +202,23 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
   result.time = sim->time() - t0;
   result.rms_error = samples > 0 ? std::sqrt(squared_error_sum / samples) : 0.0;
   return result;
+}
+
+FlightResult FlyTrajectory(const Reference& reference, const FlightParams& params,
+                           const QuadParams& vehicle, const ControllerConfig& control,
+                           const std::function<double(const Vec3&)>& clearance,
+                           const std::function<void(const TelemetrySample&)>& telemetry,
+                           Simulation* sim) {
+  control.Validate();
+  const std::unique_ptr<Controller> controller = MakeController(control, vehicle);
+  FlightLoop loop;
+  loop.vehicle = &vehicle;
+  loop.controller = controller.get();
+  loop.control_rate = control.rate;
+  loop.inner = control.inner;
+  loop.clearance = clearance;
+  loop.telemetry = telemetry;
+  return FlyTrajectory(reference, params, loop, sim);
 }
 
 }  // namespace aerobox

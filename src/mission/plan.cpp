@@ -105,7 +105,7 @@ bool IsCityScale(const Map& map) { return map.bounds.Size().head<2>().maxCoeff()
 PlanOutcome PlanFlight(const FlightSetup& setup) {
   const PlanningSettings& settings = setup.planning;
   if (!setup.goal) throw InputError({setup.map.source, 0}, "goal", "no goal given");
-  const CollisionWorld world(setup.map, settings.collision);
+  const CollisionWorld world(setup.map, setup.PlannerCollision());
   PlanOutcome outcome;
   std::tie(outcome.start, outcome.goal) = ResolveEndpoints(
       setup.map, world, setup.start, *setup.goal, setup.start_where, setup.goal_where);
@@ -139,9 +139,7 @@ LatticeParams LatticeParamsFor(const FlightSetup& setup) {
 
 TrajectoryResult TrajectoryAlong(const FlightSetup& setup, const std::vector<Vec3>& path) {
   const PlanningSettings& settings = setup.planning;
-  CollisionParams looser = settings.collision;
-  looser.clearance = settings.trajectory_clearance;
-  const CollisionWorld trajectory_world(setup.map, looser);
+  const CollisionWorld trajectory_world(setup.map, setup.TrajectoryCollision());
   const TrajectoryWorld view{
       [&trajectory_world](const Aabb& box) { return trajectory_world.IsBoxFree(box); },
       [&trajectory_world](const Vec3& a, const Vec3& b) {

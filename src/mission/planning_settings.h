@@ -16,7 +16,9 @@ namespace aerobox {
 // count, so that the same seed gives the same path on any machine; the time budget is only a
 // safety cap.
 struct PlanningSettings {
-  CollisionParams collision;  // what the planner keeps from obstacles
+  // What the planner keeps from obstacles and the bounds [m], beyond the vehicle's own box
+  // (FlightSetup::PlannerCollision).
+  double clearance = 0.10;
   RrtStarParams rrt = [] {
     RrtStarParams p;
     p.max_iterations = 4000;

@@ -7,13 +7,19 @@
 #include <string>
 #include <vector>
 
+#include "control/controllers.h"
+#include "geometry/collision_world.h"
 #include "map/map.h"
 #include "map/map_reader.h"
+#include "mission/flight.h"
 #include "mission/planning_settings.h"
+#include "vehicle/quad_params.h"
 
 namespace aerobox {
 
-// A map ready to fly: where start and goal came from is kept for messages and summaries.
+// A map ready to fly with everything a scenario sets: where start and goal came from is kept
+// for messages and summaries. One QuadParams feeds the scene, the collision worlds and the
+// controller.
 struct FlightSetup {
   std::string name;
   Map map;
@@ -26,6 +32,16 @@ struct FlightSetup {
   SourceLocation goal_where;
   std::uint64_t seed = 1;
   PlanningSettings planning;
+  std::string vehicle_kind = "tello";  // the built-in the vehicle started from ([vehicle] kind)
+  QuadParams vehicle;                  // with the scenario's overrides
+  ControllerConfig controller;         // [controller]
+  FlightParams flight;                 // [flight]
+
+  // The vehicle's box grown by the planner's clearance, and by the trajectory's.
+  CollisionParams PlannerCollision() const;
+  CollisionParams TrajectoryCollision() const;
+  // Everything a scenario set, checked; throws std::invalid_argument naming the field.
+  void Validate() const;
 };
 
 // The MJCF scene of a set-up: the vehicle rests at the start, the chase camera faces the goal.

@@ -57,7 +57,7 @@ void ReadPlanner(const toml::table& table, const std::string& file, PlanningSett
     const std::string name(key.str());
     const std::string field = "planner." + name;
     if (name == "clearance") {
-      settings->collision.clearance = Number(node, file, field, 0.0, 10.0);
+      settings->clearance = Number(node, file, field, 0.0, 10.0);
     } else if (name == "max_iterations") {
       rrt.max_iterations = static_cast<long>(Number(node, file, field, 0, 1e8));
     } else if (name == "time_budget") {
@@ -125,6 +125,263 @@ void ReadTrajectory(const toml::table& table, const std::string& file, PlanningS
       throw InputError({file, LineOf(node)}, field,
                        "unknown key (expected max_speed, max_accel, clearance, corridors, "
                        "corridor_growth, samples_per_segment, max_refinements or method)");
+    }
+  }
+}
+
+// A 3-vector: an array of 3 numbers, or one number for all three; each within [low, high].
+Vec3 Vector(const toml::node& node, const std::string& file, const std::string& key, double low,
+            double high) {
+  if (node.is_number()) return Vec3::Constant(Number(node, file, key, low, high));
+  const toml::array* array = node.as_array();
+  if (array == nullptr || array->size() != 3) {
+    throw InputError({file, LineOf(node)}, key, "expected a number or an array of 3 numbers");
+  }
+  Vec3 v;
+  for (int i = 0; i < 3; ++i) {
+    v[i] = Number((*array)[static_cast<size_t>(i)], file, key + "[" + std::to_string(i) + "]", low,
+                  high);
+  }
+  return v;
+}
+
+std::string Text(const toml::node& node, const std::string& file, const std::string& key) {
+  const std::optional<std::string> value = node.value<std::string>();
+  if (!value) throw InputError({file, LineOf(node)}, key, "expected a string");
+  return *value;
+}
+
+// The names for an "unknown key" message.
+std::string KeyList(std::initializer_list<const char*> keys) {
+  std::string text;
+  for (const char* key : keys) text += (text.empty() ? "" : ", ") + std::string(key);
+  return text;
+}
+
+// [vehicle]: the kind first (whatever the table's order), then overrides of its values, then
+// one check of the whole; a vehicle that is not physical is reported at the table.
+void ReadVehicle(const toml::table& table, const std::string& file, int table_line,
+                 Scenario* scenario) {
+  if (const toml::node* kind = table.get("kind")) {
+    const std::string name = Text(*kind, file, "vehicle.kind");
+    const std::optional<QuadParams> builtin = BuiltinVehicle(name);
+    if (!builtin) {
+      throw InputError({file, LineOf(*kind)}, "vehicle.kind",
+                       "expected \"tello\" or \"crazyflie\", got \"" + name + "\"");
+    }
+    scenario->vehicle_kind = name;
+    scenario->vehicle = *builtin;
+  }
+  QuadParams& v = scenario->vehicle;
+  std::optional<double> speed_min, speed_max, moment_coefficient;
+  int thrust_line = 0;
+  bool thrust_given = false;
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    const std::string field = "vehicle." + name;
+    const int line = LineOf(node);
+    if (name == "kind") continue;
+    if (name == "mass") {
+      v.mass = Number(node, file, field, 1e-3, 100);
+    } else if (name == "inertia") {
+      v.inertia = Vector(node, file, field, 1e-9, 10);
+    } else if (name == "rotor_positions") {
+      const toml::array* rows = node.as_array();
+      if (rows == nullptr || rows->size() != kNumRotors) {
+        throw InputError({file, line}, field, "expected 4 points [[x, y, z], ...] in metres");
+      }
+      for (size_t i = 0; i < kNumRotors; ++i) {
+        v.rotor_positions_B[i] =
+            Vector((*rows)[i], file, field + "[" + std::to_string(i) + "]", -10, 10);
+      }
+    } else if (name == "rotor_directions") {
+      const toml::array* signs = node.as_array();
+      if (signs == nullptr || signs->size() != kNumRotors) {
+        throw InputError({file, line}, field, "expected 4 signs, e.g. [1, -1, 1, -1]");
+      }
+      for (size_t i = 0; i < kNumRotors; ++i) {
+        const std::optional<int64_t> sign = (*signs)[i].value<int64_t>();
+        if (!sign || (*sign != 1 && *sign != -1)) {
+          throw InputError({file, line}, field + "[" + std::to_string(i) + "]",
+                           "expected 1 or -1 (the sign of the rotor's yaw moment on the body)");
+        }
+        v.rotor_directions[i] = static_cast<int>(*sign);
+      }
+    } else if (name == "max_rotor_thrust" || name == "min_rotor_thrust") {
+      (name == "max_rotor_thrust" ? v.max_rotor_thrust : v.min_rotor_thrust) =
+          Number(node, file, field, 0, 1000);
+      thrust_given = true;
+      thrust_line = line;
+    } else if (name == "rotor_speed_max" || name == "rotor_speed_min") {
+      (name == "rotor_speed_max" ? speed_max : speed_min) = Number(node, file, field, 0, 1e5);
+      thrust_line = line;
+    } else if (name == "thrust_coefficient") {
+      v.thrust_coefficient = Number(node, file, field, 1e-15, 1);
+    } else if (name == "yaw_moment_per_thrust") {
+      v.yaw_moment_per_thrust = Number(node, file, field, 1e-6, 1);
+    } else if (name == "moment_coefficient") {
+      moment_coefficient = Number(node, file, field, 1e-18, 1);
+    } else if (name == "motor_time_constant") {
+      v.motor_time_constant = Number(node, file, field, 1e-4, 1);
+    } else if (name == "collision_size") {
+      v.collision_size = Vector(node, file, field, 1e-3, 10);
+    } else {
+      throw InputError(
+          {file, line}, field,
+          "unknown key (expected " +
+              KeyList({"kind", "mass", "inertia", "rotor_positions", "rotor_directions",
+                       "max_rotor_thrust", "min_rotor_thrust", "rotor_speed_max", "rotor_speed_min",
+                       "thrust_coefficient", "yaw_moment_per_thrust", "moment_coefficient",
+                       "motor_time_constant", "collision_size"}) +
+              ")");
+    }
+  }
+  // RotorPy's names, in rotor speeds and k_m, through the (possibly new) thrust coefficient
+  if ((speed_max || speed_min) && thrust_given) {
+    throw InputError({file, thrust_line}, "vehicle.rotor_speed_max",
+                     "give the rotor limits as thrusts or as speeds, not both");
+  }
+  if (speed_max) v.max_rotor_thrust = v.ThrustAtSpeed(*speed_max);
+  if (speed_min) v.min_rotor_thrust = v.ThrustAtSpeed(*speed_min);
+  if (moment_coefficient) v.yaw_moment_per_thrust = *moment_coefficient / v.thrust_coefficient;
+  try {
+    v.Validate();
+  } catch (const std::invalid_argument& e) {
+    throw InputError({file, table_line}, "vehicle", e.what());
+  }
+}
+
+void ReadController(const toml::table& table, const std::string& file, int table_line,
+                    ControllerConfig* config) {
+  PositionControlParams& cascade = config->cascade;
+  Se3Params& se3 = config->se3;
+  InnerLoopParams& inner = config->inner;
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    const std::string field = "controller." + name;
+    const auto gain = [&](Vec3* target) { *target = Vector(node, file, field, 0, 1e5); };
+    const auto number = [&](double* target, double low, double high) {
+      *target = Number(node, file, field, low, high);
+    };
+    if (name == "kind") {
+      config->kind = Text(node, file, field);
+      if (Controllers().Find(config->kind) == nullptr) {
+        throw InputError({file, LineOf(node)}, field,
+                         "expected " + Controllers().NameList() + ", got \"" + config->kind + "\"");
+      }
+    } else if (name == "rate") {
+      number(&config->rate, 1, 1000);
+    } else if (name == "position_gain") {
+      gain(&cascade.position_gain);
+    } else if (name == "velocity_gain") {
+      gain(&cascade.velocity_gain);
+    } else if (name == "velocity_integral") {
+      gain(&cascade.velocity_integral);
+    } else if (name == "velocity_derivative") {
+      gain(&cascade.velocity_derivative);
+    } else if (name == "velocity_integral_limit") {
+      gain(&cascade.integral_limit);
+    } else if (name == "max_speed_horizontal") {
+      number(&cascade.max_speed_horizontal, 0.01, 100);
+    } else if (name == "max_speed_vertical") {
+      number(&cascade.max_speed_vertical, 0.01, 100);
+    } else if (name == "max_accel_horizontal") {
+      number(&cascade.max_accel_horizontal, 0.01, 100);
+    } else if (name == "max_accel_vertical") {
+      number(&cascade.max_accel_vertical, 0.01, 100);
+    } else if (name == "max_tilt") {
+      number(&cascade.max_tilt, 0.01, 1.5);
+      se3.max_tilt = cascade.max_tilt;
+    } else if (name == "min_thrust_fraction") {
+      number(&cascade.min_thrust_fraction, 0.01, 0.99);
+    } else if (name == "se3_position_gain") {
+      gain(&se3.position_gain);
+    } else if (name == "se3_velocity_gain") {
+      gain(&se3.velocity_gain);
+    } else if (name == "se3_attitude_gain") {
+      gain(&se3.attitude_gain);
+    } else if (name == "se3_rate_gain") {
+      gain(&se3.rate_gain);
+    } else if (name == "attitude_gain") {
+      gain(&inner.attitude.gain);
+    } else if (name == "max_rate") {
+      gain(&inner.attitude.max_rate);
+    } else if (name == "yaw_weight") {
+      number(&inner.attitude.yaw_weight, 0.01, 1);
+    } else if (name == "rate_gain") {
+      gain(&inner.rate.gain);
+    } else if (name == "rate_integral") {
+      gain(&inner.rate.integral);
+    } else if (name == "rate_derivative") {
+      gain(&inner.rate.derivative);
+    } else if (name == "rate_integral_limit") {
+      gain(&inner.rate.integral_limit);
+    } else {
+      throw InputError({file, LineOf(node)}, field,
+                       "unknown key (expected " +
+                           KeyList({"kind",
+                                    "rate",
+                                    "position_gain",
+                                    "velocity_gain",
+                                    "velocity_integral",
+                                    "velocity_derivative",
+                                    "velocity_integral_limit",
+                                    "max_speed_horizontal",
+                                    "max_speed_vertical",
+                                    "max_accel_horizontal",
+                                    "max_accel_vertical",
+                                    "max_tilt",
+                                    "min_thrust_fraction",
+                                    "se3_position_gain",
+                                    "se3_velocity_gain",
+                                    "se3_attitude_gain",
+                                    "se3_rate_gain",
+                                    "attitude_gain",
+                                    "max_rate",
+                                    "yaw_weight",
+                                    "rate_gain",
+                                    "rate_integral",
+                                    "rate_derivative",
+                                    "rate_integral_limit"}) +
+                           ")");
+    }
+  }
+  // the rate must divide the 1 kHz physics rate
+  const double steps = 1000.0 / config->rate;
+  if (std::abs(steps - std::round(steps)) > 1e-9) {
+    const toml::node* rate = table.get("rate");
+    throw InputError({file, rate != nullptr ? LineOf(*rate) : table_line}, "controller.rate",
+                     "must divide the 1000 Hz physics rate (e.g. 1000, 500, 250, 200, 100)");
+  }
+  try {
+    config->Validate();
+  } catch (const std::invalid_argument& e) {
+    throw InputError({file, table_line}, "controller", e.what());
+  }
+}
+
+void ReadFlight(const toml::table& table, const std::string& file, FlightParams* flight) {
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    const std::string field = "flight." + name;
+    if (name == "settle_time") {
+      flight->settle_time = Number(node, file, field, 0, 3600);
+    } else if (name == "goal_tolerance") {
+      flight->goal_tolerance = Number(node, file, field, 1e-3, 100);
+    } else if (name == "goal_speed") {
+      flight->goal_speed = Number(node, file, field, 1e-3, 100);
+    } else if (name == "flyaway_distance") {
+      flight->flyaway_distance = Number(node, file, field, 0.01, 1000);
+    } else if (name == "yaw") {
+      const std::string yaw = Text(node, file, field);
+      if (yaw != "hold" && yaw != "travel") {
+        throw InputError({file, LineOf(node)}, field, "expected \"hold\" or \"travel\"");
+      }
+      flight->face_travel = yaw == "travel";
+    } else {
+      throw InputError({file, LineOf(node)}, field,
+                       "unknown key (expected settle_time, goal_tolerance, goal_speed, "
+                       "flyaway_distance or yaw)");
     }
   }
 }
@@ -201,7 +458,15 @@ Scenario ReadScenario(std::istream& in, const std::string& file) {
       const toml::table* section = node.as_table();
       if (section == nullptr) throw InputError(where, name, "expected a table [trajectory]");
       ReadTrajectory(*section, file, &scenario.planning);
-    } else if (name == "controller" || name == "render") {
+    } else if (name == "vehicle" || name == "controller" || name == "flight") {
+      const toml::table* section = node.as_table();
+      if (section == nullptr) throw InputError(where, name, "expected a table [" + name + "]");
+      if (name == "vehicle") ReadVehicle(*section, file, LineOf(node), &scenario);
+      if (name == "controller") {
+        ReadController(*section, file, LineOf(node), &scenario.controller);
+      }
+      if (name == "flight") ReadFlight(*section, file, &scenario.flight);
+    } else if (name == "render") {
       const toml::table* section = node.as_table();
       if (section == nullptr) throw InputError(where, name, "expected a table [" + name + "]");
       for (const auto& [inner, inner_node] : *section) {
@@ -211,7 +476,7 @@ Scenario ReadScenario(std::istream& in, const std::string& file) {
     } else {
       throw InputError(where, name,
                        "unknown key (expected name, map, start, goal, seed, [planner], "
-                       "[trajectory], [controller] or [render])");
+                       "[trajectory], [vehicle], [controller], [flight] or [render])");
     }
   }
   // a missing key belongs to the top-level table, which starts at line 1
@@ -244,7 +509,13 @@ FlightSetup LoadFlightSetup(const std::string& path, const SetupOverrides& overr
   if (scenario) setup.map.name = scenario->name;
   setup.name = setup.map.name;
   setup.seed = overrides.seed.value_or(scenario ? scenario->seed : 1);
-  if (scenario) setup.planning = scenario->planning;
+  if (scenario) {
+    setup.planning = scenario->planning;
+    setup.vehicle_kind = scenario->vehicle_kind;
+    setup.vehicle = scenario->vehicle;
+    setup.controller = scenario->controller;
+    setup.flight = scenario->flight;
+  }
 
   std::optional<StartGoal> side_file;
   const fs::path side_path =
@@ -280,10 +551,9 @@ FlightSetup LoadFlightSetup(const std::string& path, const SetupOverrides& overr
   if (start) {
     setup.start = *start;
   } else {
-    const QuadParams vehicle;
     // 0.3 m keeps the default start clear of walls by more than the vehicle's own size
     const std::optional<Vec3> fallback =
-        DefaultStart(setup.map, 0.3, 0.5 * vehicle.collision_size.z());
+        DefaultStart(setup.map, 0.3, 0.5 * setup.vehicle.collision_size.z());
     if (!fallback) {
       throw InputError({path, 0}, "start", "no start given and no free spot on the floor found");
     }

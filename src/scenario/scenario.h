@@ -25,7 +25,11 @@ namespace aerobox {
 //   [trajectory]                         # optional: max_speed, max_accel, clearance,
 //                                        #   corridors, corridor_growth, samples_per_segment,
 //                                        #   max_refinements
-//   [controller] [render]                # optional tables (no keys defined yet)
+//   [vehicle]                            # optional: kind ("tello", "crazyflie") and
+//                                        #   overrides of its values (README: The vehicle)
+//   [controller]                         # optional: kind ("cascade", "se3"), rate, gains
+//   [flight]                             # optional: settle_time, tolerances, yaw
+//   [render]                             # optional table (no keys defined yet)
 struct Scenario {
   std::string name;
   std::string file;      // the scenario file, for messages
@@ -37,6 +41,10 @@ struct Scenario {
   int goal_line = 0;
   std::uint64_t seed = 1;
   PlanningSettings planning;
+  std::string vehicle_kind = "tello";  // [vehicle] kind
+  QuadParams vehicle;                  // the kind's values with the table's overrides
+  ControllerConfig controller;         // [controller]
+  FlightParams flight;                 // [flight]
 };
 
 // Parses scenario text; throws InputError naming the file, line and key at fault.

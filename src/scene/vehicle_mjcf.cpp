@@ -228,15 +228,16 @@ void WriteVehicleActuators(const QuadParams& params, XmlWriter* xml) {
     Eigen::Matrix<double, 6, 1> gear;
     gear << 0, 0, 1, 0, 0, RotorYawMomentPerThrust(params, i);
     // filter dynamics: d(act)/dt = (ctrl - act) / tau, force = act (gain 1): first-order lag
-    xml->Leaf("general", {{"name", model_names::ThrustActuator(i)},
-                          {"site", model_names::RotorSite(i)},
-                          {"gear", Vec(gear)},
-                          {"dyntype", "filter"},
-                          {"dynprm", Num(params.motor_time_constant)},
-                          {"gaintype", "fixed"},
-                          {"gainprm", "1"},
-                          {"biastype", "none"},
-                          {"ctrlrange", "0 " + Num(params.max_rotor_thrust)}});
+    xml->Leaf("general",
+              {{"name", model_names::ThrustActuator(i)},
+               {"site", model_names::RotorSite(i)},
+               {"gear", Vec(gear)},
+               {"dyntype", "filter"},
+               {"dynprm", Num(params.motor_time_constant)},
+               {"gaintype", "fixed"},
+               {"gainprm", "1"},
+               {"biastype", "none"},
+               {"ctrlrange", Num(params.MinRotorThrust()) + " " + Num(params.MaxRotorThrust())}});
   }
 }
 

@@ -1,6 +1,7 @@
 #include "sim/simulation.h"
 
 #include <cstring>
+#include <string>
 
 #include "common/error.h"
 #include "sim/mujoco_messages.h"
@@ -128,6 +129,18 @@ Vec3 Simulation::LinearAcceleration_W() const {
 
 Vec3 Simulation::AngularAcceleration_B() const {
   return Eigen::Map<const Vec3>(data_->qacc + qvel_adr_ + 3);
+}
+
+std::string Simulation::TakeNewWarnings() {
+  std::string text;
+  for (int i = 0; i < mjNWARNING; ++i) {
+    const mjWarningStat& stat = data_->warning[i];
+    if (stat.number <= warnings_seen_[i]) continue;
+    warnings_seen_[i] = stat.number;
+    if (!text.empty()) text += "; ";
+    text += mju_warningText(i, stat.lastinfo);
+  }
+  return text;
 }
 
 std::vector<VehicleContact> Simulation::VehicleContacts() const {

@@ -57,6 +57,11 @@ class Simulation {
   Vec3 LinearAcceleration_W() const;
   Vec3 AngularAcceleration_B() const;
 
+  // MuJoCo's warnings (an engine reset after a bad acceleration, a full contact buffer, ...)
+  // raised by this simulation since the last call, in MuJoCo's words; "" when there were none.
+  // MuJoCo counts them in mjData; a flight that meets one cannot be trusted.
+  std::string TakeNewWarnings();
+
   // Contacts the vehicle has in the current state.
   std::vector<VehicleContact> VehicleContacts() const;
 
@@ -78,7 +83,8 @@ class Simulation {
   int qpos_adr_ = -1;  // the free joint's position (3) and quaternion (4)
   int qvel_adr_ = -1;  // its linear velocity in the world (3), angular in the body (3)
   std::array<int, 4> actuator_ids_{};
-  std::array<int, 4> act_adr_{};  // each rotor's motor-lag state in mjData::act
+  std::array<int, 4> act_adr_{};                 // each rotor's motor-lag state in mjData::act
+  std::array<int, mjNWARNING> warnings_seen_{};  // mjData::warning[i].number already reported
 };
 
 }  // namespace aerobox

@@ -1,5 +1,6 @@
 #include "vehicle/quad_params.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -9,11 +10,37 @@
 namespace aerobox {
 namespace {
 
-void RequirePositive(double value, const char* field) {
+void RequirePositive(double value, const std::string& field) {
   if (!(std::isfinite(value) && value > 0.0)) {
-    throw std::invalid_argument(std::string("QuadParams.") + field + " must be positive, got " +
+    throw std::invalid_argument("QuadParams." + field + " must be positive, got " +
                                 FormatNumber(value));
   }
+}
+
+// A Crazyflie 2.x, from RotorPy's crazyflie_params.py, which takes its rotor coefficients
+// from Förster 2015 ("System identification of the Crazyflie 2.0 nano quadrocopter", ETH).
+QuadParams Crazyflie() {
+  QuadParams p;
+  p.mass = 0.030;  // [kg] with battery (Bitcraze: 27 g bare)
+  // [kg m^2] Förster 2015's identified moments. RotorPy's (1.43e-5, 1.43e-5, 2.89e-5) break the
+  // triangle inequality Ixx + Iyy >= Izz that every rigid body meets (MuJoCo refuses them).
+  p.inertia = Vec3(1.395e-5, 1.436e-5, 2.173e-5);
+  // 43 mm arms at 45 degrees, RotorPy's order: front-left, front-right, back-right, back-left
+  const double d = 0.043 * std::sqrt(0.5);
+  p.rotor_positions_B = {Vec3(d, d, 0), Vec3(d, -d, 0), Vec3(-d, -d, 0), Vec3(-d, d, 0)};
+  p.rotor_directions = {+1, -1, +1, -1};         // RotorPy's rotor_directions
+  p.thrust_coefficient = 2.3e-8;                 // k_eta [N/(rad/s)^2]
+  p.min_rotor_thrust = 0.0;                      // rotor_speed_min 0 rad/s
+  p.max_rotor_thrust = p.ThrustAtSpeed(2500.0);  // rotor_speed_max 2500 rad/s: 0.144 N
+  p.yaw_moment_per_thrust = 7.8e-10 / 2.3e-8;    // k_m / k_eta = 0.0339 m
+  // RotorPy's crazyflie_params gives 0.005 s in its first releases and 0.072 s (on rotor
+  // speed, which for small changes is the thrust's time constant too) in later ones; the
+  // brushed motors are slow, so the later value is the one taken.
+  p.motor_time_constant = 0.072;
+  p.collision_size = Vec3(0.10, 0.10, 0.03);  // 92 x 92 x 29 mm over the propellers
+  p.propeller_radius = 0.0225;                // 45 mm propellers
+  p.guard_radius = 0.024;                     // (no guards: the propeller disc's outline)
+  return p;
 }
 
 }  // namespace
@@ -22,13 +49,33 @@ void QuadParams::Validate() const {
   RequirePositive(mass, "mass");
   for (int i = 0; i < 3; ++i) RequirePositive(inertia[i], "inertia");
   for (int i = 0; i < 3; ++i) RequirePositive(collision_size[i], "collision_size");
-  RequirePositive(arm_offset, "arm_offset");
+  for (int i = 0; i < kNumRotors; ++i) {
+    if (!rotor_positions_B[i].allFinite() || rotor_positions_B[i].head<2>().norm() < 1e-3) {
+      throw std::invalid_argument("QuadParams.rotor_positions[" + std::to_string(i) +
+                                  "] must be finite and off the body's z axis, got " +
+                                  FormatVector(rotor_positions_B[i]));
+    }
+    if (rotor_directions[i] != 1 && rotor_directions[i] != -1) {
+      throw std::invalid_argument("QuadParams.rotor_directions[" + std::to_string(i) +
+                                  "] must be +1 or -1");
+    }
+  }
+  if (!(std::isfinite(min_rotor_thrust) && min_rotor_thrust >= 0.0)) {
+    throw std::invalid_argument("QuadParams.min_rotor_thrust must be >= 0, got " +
+                                FormatNumber(min_rotor_thrust));
+  }
   RequirePositive(max_rotor_thrust, "max_rotor_thrust");
+  if (!(max_rotor_thrust > min_rotor_thrust)) {
+    throw std::invalid_argument("QuadParams.max_rotor_thrust " + FormatNumber(max_rotor_thrust) +
+                                " N must exceed min_rotor_thrust " +
+                                FormatNumber(min_rotor_thrust) + " N");
+  }
+  RequirePositive(thrust_coefficient, "thrust_coefficient");
   RequirePositive(yaw_moment_per_thrust, "yaw_moment_per_thrust");
   RequirePositive(motor_time_constant, "motor_time_constant");
   RequirePositive(propeller_radius, "propeller_radius");
   RequirePositive(guard_radius, "guard_radius");
-  if (4.0 * max_rotor_thrust <= mass * kGravity) {
+  if (kNumRotors * max_rotor_thrust <= mass * kGravity) {
     throw std::invalid_argument("QuadParams.max_rotor_thrust " + FormatNumber(max_rotor_thrust) +
                                 " N cannot lift the mass " + FormatNumber(mass) + " kg");
   }
@@ -38,18 +85,38 @@ void QuadParams::Validate() const {
     throw std::invalid_argument("QuadParams.inertia " + FormatVector(inertia) +
                                 " violates the triangle inequality");
   }
+  // the four rotors must span thrust, roll, pitch and yaw, or no mixer exists
+  if (std::abs(AllocationMatrix(*this).determinant()) < 1e-12 * max_rotor_thrust) {
+    throw std::invalid_argument(
+        "QuadParams.rotor_positions and rotor_directions cannot control roll, pitch and yaw "
+        "independently (the allocation matrix is singular)");
+  }
 }
+
+double QuadParams::RotorSpeedFor(double thrust) const {
+  return std::sqrt(std::max(0.0, thrust) / thrust_coefficient);
+}
+
+double QuadParams::ArmLength() const {
+  double arm = 0.0;
+  for (const Vec3& r : rotor_positions_B) arm = std::max(arm, r.head<2>().norm());
+  return arm;
+}
+
+std::optional<QuadParams> BuiltinVehicle(const std::string& kind) {
+  if (kind == "tello") return QuadParams();
+  if (kind == "crazyflie") return Crazyflie();
+  return std::nullopt;
+}
+
+std::vector<std::string> BuiltinVehicleNames() { return {"crazyflie", "tello"}; }
 
 Vec3 RotorPosition_B(const QuadParams& params, int rotor) {
-  static constexpr double kSignX[kNumRotors] = {+1, -1, -1, +1};
-  static constexpr double kSignY[kNumRotors] = {+1, +1, -1, -1};
-  return params.arm_offset * Vec3(kSignX[rotor], kSignY[rotor], 0.0);
+  return params.rotor_positions_B[rotor];
 }
 
-int RotorSpin(int rotor) { return rotor % 2 == 0 ? -1 : +1; }
-
 double RotorYawMomentPerThrust(const QuadParams& params, int rotor) {
-  return -RotorSpin(rotor) * params.yaw_moment_per_thrust;
+  return params.rotor_directions[rotor] * params.yaw_moment_per_thrust;
 }
 
 Mat4 AllocationMatrix(const QuadParams& params) {

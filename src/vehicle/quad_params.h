@@ -1,15 +1,23 @@
-// Physical parameters of a Tello-sized quadrotor (DJI Tello: 80 g, 98 x 92.5 x 41 mm).
-// Every value carries its unit and where it comes from. The MuJoCo model in models/ and in every
-// scene is generated from this struct, so these are the only copies of the numbers.
+// Physical parameters of a quadrotor. Every value carries its unit and where it comes from. The
+// MuJoCo model in models/ and in every scene, the collision world and the controllers are all
+// made from this struct, so these are the only copies of the numbers. Two built-in vehicles
+// (BuiltinVehicle): "tello", the default, and "crazyflie".
 #pragma once
 
 #include <array>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "common/types.h"
 
 namespace aerobox {
 
+inline constexpr int kNumRotors = 4;
+
 struct QuadParams {
+  // Defaults: a DJI Tello (80 g, 98 x 92.5 x 41 mm).
+
   // Mass with battery and guards [kg]. DJI's specification: 80 g.
   double mass = 0.080;
 
@@ -19,19 +27,34 @@ struct QuadParams {
   // the RBE595 starter code's 0.0097 is about 100x too large for a vehicle this size.
   Vec3 inertia = Vec3(7.1e-5, 7.5e-5, 1.24e-4);
 
-  // Rotor centres sit at (+-arm_offset, +-arm_offset, 0) in the body frame [m] (X layout). The
-  // Tello's motors are about 7 cm apart front-to-back and side-to-side.
-  double arm_offset = 0.035;
+  // Rotor centres in the body frame [m]. The Tello's motors are about 7 cm apart front-to-back
+  // and side-to-side (X layout): 0 front-left, 1 back-left, 2 back-right, 3 front-right.
+  std::array<Vec3, kNumRotors> rotor_positions_B = {Vec3(0.035, 0.035, 0), Vec3(-0.035, 0.035, 0),
+                                                    Vec3(-0.035, -0.035, 0),
+                                                    Vec3(0.035, -0.035, 0)};
 
-  // Largest thrust of one rotor [N]. Thrust-to-weight about 2: 4 x 0.4 N / (0.08 kg x 9.81).
+  // Sign of each rotor's reaction (yaw) moment on the body about body z, as RotorPy's
+  // rotor_directions: +1 for a rotor that spins clockwise seen from above. Diagonal rotors
+  // share a sign, so equal thrusts give no yaw moment.
+  std::array<int, kNumRotors> rotor_directions = {+1, -1, +1, -1};
+
+  // Rotor limits [N]: thrust-to-weight about 2 (4 x 0.4 N / (0.08 kg x 9.81)).
+  double min_rotor_thrust = 0.0;
   double max_rotor_thrust = 0.4;
 
-  // Reaction (yaw) moment per newton of thrust [N m / N = m]. An estimate for 3-inch-class
-  // propellers; it only sets the yaw authority, which the controller ranks last.
+  // Thrust per squared rotor speed [N / (rad/s)^2] (RotorPy's k_eta): only for rotor speeds
+  // (commands and reports); the simulation works in thrust. A Tello's 3-inch propeller: the
+  // Crazyflie's 2.3e-8 scaled by the propeller diameter to the 4th power, (76 / 46 mm)^4,
+  // which puts the 0.4 N limit at about 1530 rad/s (14,600 rpm).
+  double thrust_coefficient = 1.7e-7;
+
+  // Reaction (yaw) moment per newton of thrust [N m / N = m] (RotorPy's k_m / k_eta). An
+  // estimate for 3-inch-class propellers; it only sets the yaw authority, which the controller
+  // ranks last.
   double yaw_moment_per_thrust = 0.006;
 
-  // First-order motor lag [s]. RotorS uses 1/80 s spinning up and 1/40 s down; MuJoCo 2.2's
-  // filter actuator has one time constant, so 20 ms sits between the two.
+  // First-order motor lag of the thrust [s]. RotorS uses 1/80 s spinning up and 1/40 s down;
+  // MuJoCo 2.2's filter actuator has one time constant, so 20 ms sits between the two.
   double motor_time_constant = 0.020;
 
   // Collision body: a box of these full sides [m], centred at the body origin. The Tello's
@@ -46,26 +69,26 @@ struct QuadParams {
   // Throws std::invalid_argument naming the field and value when a value is not physical.
   void Validate() const;
 
+  double MinRotorThrust() const { return min_rotor_thrust; }
+  double MaxRotorThrust() const { return max_rotor_thrust; }
   // Thrust of each rotor that holds a hover [N].
-  double HoverThrustPerRotor() const { return mass * kGravity / 4.0; }
+  double HoverThrustPerRotor() const { return mass * kGravity / kNumRotors; }
+  // Rotor speed for a thrust and back [rad/s, N], through thrust_coefficient.
+  double RotorSpeedFor(double thrust) const;
+  double ThrustAtSpeed(double speed) const { return thrust_coefficient * speed * speed; }
+  // The largest distance of a rotor centre from the body z axis [m] (for visuals).
+  double ArmLength() const;
 };
 
-// Rotor numbering (looking down on the vehicle, x forward, y left):
-//   rotor 0 front-left  (+x, +y), spins clockwise
-//   rotor 1 back-left   (-x, +y), spins counter-clockwise
-//   rotor 2 back-right  (-x, -y), spins clockwise
-//   rotor 3 front-right (+x, -y), spins counter-clockwise
-// Diagonal rotors spin the same way, so equal thrusts give no yaw moment.
-inline constexpr int kNumRotors = 4;
+// The built-in vehicles by name ("tello", "crazyflie"), or nothing.
+std::optional<QuadParams> BuiltinVehicle(const std::string& kind);
+std::vector<std::string> BuiltinVehicleNames();
 
 // Rotor centre in the body frame [m].
 Vec3 RotorPosition_B(const QuadParams& params, int rotor);
 
-// +1 for a rotor that spins counter-clockwise seen from above (positive about body z), -1 for
-// clockwise. The reaction moment on the body is opposite to the spin.
-int RotorSpin(int rotor);
-
-// Yaw moment on the body per newton of this rotor's thrust [m]: -spin * yaw_moment_per_thrust.
+// Yaw moment on the body per newton of this rotor's thrust [m]:
+// rotor_directions[rotor] * yaw_moment_per_thrust.
 double RotorYawMomentPerThrust(const QuadParams& params, int rotor);
 
 // Allocation matrix A: [total thrust N; roll, pitch, yaw moments N m (body frame)] = A * f,

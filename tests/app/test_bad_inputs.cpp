@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "app/exit_codes.h"
-#include "scenario/scenario.h"
 #include "cli_runner.h"
 #include "common/error.h"
+#include "scenario/scenario.h"
 #include "test_support.h"
 
 namespace aerobox {

@@ -58,7 +58,7 @@ Track Fly(const Reference& reference, Simulation* sim, FlightParams params = Fli
   Track track;
   params.settle_time = 3.0;
   track.result = FlyTrajectory(
-      reference, params, QuadParams(), {},
+      reference, params, QuadParams(), ControllerConfig(), {},
       [&track](const TelemetrySample& s) { track.samples.push_back(s); }, sim);
   return track;
 }

@@ -4,8 +4,8 @@
 #include <random>
 
 #include "../planning/planning_test_util.h"
-#include "mission/plan.h"
 #include "common/error.h"
+#include "mission/plan.h"
 #include "planning/path_simplify.h"
 #include "test_support.h"
 
@@ -25,7 +25,7 @@ void CheckPlan(const std::string& path, bool expect_path) {
   REQUIRE(plan.result.status == PlanStatus::kSolved);
   CHECK(plan.result.path.front() == plan.start.used);
   CHECK(plan.result.path.back() == plan.goal.used);
-  CHECK(testing::DenselyFree(setup.map, setup.planning.collision, plan.result.path));
+  CHECK(testing::DenselyFree(setup.map, setup.PlannerCollision(), plan.result.path));
   // moved endpoints moved by less than the search radius plus the margin
   CHECK(plan.start.moved < 0.5 + 0.2);
   CHECK(plan.goal.moved < 0.5 + 0.2);
@@ -44,9 +44,7 @@ void CheckPlan(const std::string& path, bool expect_path) {
     CHECK(trajectory.trajectory.Evaluate(t, kVelocity).norm() <= 1.005 * limits.max_speed);
     CHECK(trajectory.trajectory.Evaluate(t, kAcceleration).norm() <= 1.005 * limits.max_accel);
   }
-  CollisionParams trajectory_clearance = setup.planning.collision;
-  trajectory_clearance.clearance = setup.planning.trajectory_clearance;
-  CHECK(testing::DenselyFree(setup.map, trajectory_clearance, samples));
+  CHECK(testing::DenselyFree(setup.map, setup.TrajectoryCollision(), samples));
   CHECK((samples.front() - plan.start.used).norm() < 1e-9);
   CHECK(
       (trajectory.trajectory.Evaluate(trajectory.trajectory.duration(), kPosition) - plan.goal.used)
@@ -114,7 +112,7 @@ TEST_CASE("the city: the lattice plans 600-700 m queries that pass the dense re-
   AEROBOX_REQUIRE_SHARED_MAPS(maps);
   FlightSetup setup = LoadFlightSetup((maps / "fcnd/colliders.csv").string(), {});
   // seeded random free pairs 600-700 m apart, 10-60 m up
-  const CollisionWorld world(setup.map, setup.planning.collision);
+  const CollisionWorld world(setup.map, setup.PlannerCollision());
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> x(setup.map.bounds.min.x() + 5,
                                            setup.map.bounds.max.x() - 5);
@@ -137,7 +135,7 @@ TEST_CASE("the city: the lattice plans 600-700 m queries that pass the dense re-
     ++solved;
     // 5 cm between samples here, not 1 cm: 20 paths of 700 m against 3845 boxes brute force
     // (the exact segment test already passed them; this is the second opinion)
-    CHECK(testing::DenselyFree(setup.map, setup.planning.collision, plan.result.path, 0.05));
+    CHECK(testing::DenselyFree(setup.map, setup.PlannerCollision(), plan.result.path, 0.05));
     CHECK(plan.trajectory);
   }
   MESSAGE("city: " << solved << " of " << queries << " queries solved");

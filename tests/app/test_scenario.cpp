@@ -2,8 +2,8 @@
 
 #include <sstream>
 
-#include "scenario/scenario.h"
 #include "common/error.h"
+#include "scenario/scenario.h"
 #include "test_support.h"
 
 namespace aerobox {
@@ -52,7 +52,7 @@ TEST_CASE("scenario files: the [planner] table") {
       "max_step = 1.5\ngoal_bias = 0.1\nrewire_factor = 1.5\ninformed = false\n"
       "shortcut_attempts = 7\n");
   const Scenario scenario = ReadScenario(in, "s.toml");
-  CHECK(scenario.planning.collision.clearance == 0.2);
+  CHECK(scenario.planning.clearance == 0.2);
   const RrtStarParams& rrt = scenario.planning.rrt;
   CHECK(rrt.max_iterations == 500);
   CHECK(rrt.time_budget == 2.5);

@@ -4,6 +4,8 @@
 #include <limits>
 
 #include "control/cascade.h"
+#include "control/inner_loops.h"
+#include "control/se3_control.h"
 #include "scene/scene_mjcf.h"
 #include "sim/simulation.h"
 
@@ -63,12 +65,18 @@ TEST_CASE("every stage rejects non-finite input without throwing and keeps its o
   CHECK_FALSE(mixer.Mix(kNaN, Vec3::Zero(), &mixed));
   CHECK(mixed.thrusts == Vec4::Zero());
 
-  CascadeController cascade(CascadeParams(), vehicle);
-  CascadeOutput out;
+  CascadeController cascade(PositionControlParams(), 0.004, vehicle.mass);
+  ControlCommand command;
   State state;
   state.w_B = Vec3(kNaN, 0, 0);
-  CHECK_NOTHROW(CHECK_FALSE(cascade.Update(PositionSetpoint(), state, &out)));
+  CHECK_NOTHROW(CHECK_FALSE(cascade.Update(0.0, state, FlatOutput(), &command)));
+  InnerLoops inner(InnerLoopParams(), vehicle);
+  InnerOutput out;
+  out.mixer.thrusts = Vec4::Constant(1);
+  CHECK_NOTHROW(CHECK_FALSE(inner.Run(ControlCommand(), state, 0.001, &out)));
   CHECK(out.mixer.thrusts == Vec4::Zero());
+  Se3Controller se3(Se3Params(), vehicle);
+  CHECK_NOTHROW(CHECK_FALSE(se3.Update(0.0, state, FlatOutput(), &command)));
 }
 
 TEST_CASE("attitude control: a tilt error gets full gain, a yaw error only its share") {
@@ -108,13 +116,13 @@ TEST_CASE("mixer: exact inside the limits, thrust then roll/pitch before yaw whe
   CHECK(delivered[1] == doctest::Approx(2e-3));
   CHECK(out.yaw_scale < 1.0);
   CHECK(out.thrusts.minCoeff() >= 0.0);
-  CHECK(out.thrusts.maxCoeff() <= vehicle.max_rotor_thrust + 1e-12);
+  CHECK(out.thrusts.maxCoeff() <= vehicle.MaxRotorThrust() + 1e-12);
 
   // a roll demand beyond the rotors at full thrust: thrust kept, roll cut, yaw gone
   REQUIRE(mixer.Mix(1.5, Vec3(0.05, 0, 0.01), &out));
   CHECK((allocation * out.thrusts)[0] == doctest::Approx(1.5));
   CHECK(out.roll_pitch_scale < 1.0);
-  CHECK(out.thrusts.maxCoeff() <= vehicle.max_rotor_thrust + 1e-12);
+  CHECK(out.thrusts.maxCoeff() <= vehicle.MaxRotorThrust() + 1e-12);
 }
 
 TEST_CASE("the mixer's predicted body acceleration matches MuJoCo's response") {

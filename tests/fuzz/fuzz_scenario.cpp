@@ -1,5 +1,5 @@
-#include "scenario/scenario.h"
 #include "fuzz_target.h"
+#include "scenario/scenario.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   return aerobox::fuzz::Run(data, size, [](std::istream& in) {

@@ -1,0 +1,51 @@
+// The controller seam: what the vehicle's controller sees and what it may command. A controller
+// is called at its own rate with the state and the trajectory's flat outputs, and answers with
+// a command at any of RotorPy's control abstractions; aerobox runs the inner loops below that
+// command (control/inner_loops.h) at the physics rate. The built-ins (controllers.h) are
+// ordinary implementations; a user's controller is one more.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "common/flat_output.h"
+#include "common/state.h"
+#include "common/types.h"
+
+namespace aerobox {
+
+// How far down the cascade a command reaches.
+enum class CommandLevel {
+  kRotorThrusts,    // four rotor thrusts [N] (RotorPy's cmd_motor_thrusts)
+  kThrustMoment,    // collective thrust [N] and body moments [N m] (cmd_ctbm)
+  kThrustRates,     // collective thrust [N] and body rates [rad/s] (cmd_ctbr)
+  kThrustAttitude,  // collective thrust [N] and attitude (cmd_ctatt)
+};
+const char* ToString(CommandLevel level);
+
+struct ControlCommand {
+  CommandLevel level = CommandLevel::kThrustAttitude;
+  Vec4 rotor_thrusts = Vec4::Zero();  // [N], rotor order of vehicle/quad_params.h
+  double thrust = 0.0;                // collective thrust along the body's z [N]
+  Vec3 moment_B = Vec3::Zero();       // body moments [N m]
+  Vec3 rate_B = Vec3::Zero();         // body rates [rad/s]
+  Quat q_WB = Quat::Identity();       // attitude, body to world
+};
+
+class Controller {
+ public:
+  virtual ~Controller() = default;
+
+  // One control step at flight time t [s]: the state (ENU world, FLU body) and the setpoint in,
+  // the command out. Returns false when no usable command can be given (a non-finite input);
+  // the flight then ends as non-finite. Never throws.
+  virtual bool Update(double t, const State& state, const FlatOutput& setpoint,
+                      ControlCommand* command) = 0;
+
+  // Telemetry columns of the controller's own (names with their unit in the README or the
+  // controller's header), and their values after the last Update, in that order.
+  virtual std::vector<std::string> ReportColumns() const { return {}; }
+  virtual void Report(std::vector<double>* values) const { values->clear(); }
+};
+
+}  // namespace aerobox

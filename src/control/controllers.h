@@ -1,0 +1,41 @@
+// The controllers by name: the configuration a scenario's [controller] table sets, and the
+// registry that makes a Controller of it ("cascade", "se3", and any a user registers).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "common/registry.h"
+#include "control/controller.h"
+#include "control/inner_loops.h"
+#include "control/position_control.h"
+#include "control/se3_control.h"
+#include "vehicle/quad_params.h"
+
+namespace aerobox {
+
+struct ControllerConfig {
+  std::string kind = "cascade";  // a name in Controllers()
+  // How often the controller runs [Hz]; it must divide the physics rate (1000 Hz). PX4 runs its
+  // position loop at 250 Hz (every 4th physics step here); the inner loops run every step.
+  double rate = 250.0;
+  PositionControlParams cascade;  // kind "cascade": the position and velocity loops
+  Se3Params se3;                  // kind "se3"
+  InnerLoopParams inner;          // the attitude and rate loops below any command that needs them
+
+  // Throws std::invalid_argument naming the field.
+  void Validate() const;
+};
+
+using ControllerFactory =
+    std::function<std::unique_ptr<Controller>(const ControllerConfig&, const QuadParams&)>;
+
+// The registry, with the built-ins already in it.
+Registry<ControllerFactory>& Controllers();
+
+// The controller `config.kind` names; throws std::invalid_argument for an unknown kind.
+std::unique_ptr<Controller> MakeController(const ControllerConfig& config,
+                                           const QuadParams& vehicle);
+
+}  // namespace aerobox

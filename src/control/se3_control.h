@@ -1,0 +1,48 @@
+// Geometric tracking control on SE(3) (Lee, Leok and McClamroch 2010, "Geometric tracking
+// control of a quadrotor UAV on SE(3)"), in ENU with z up: a force from the position and
+// velocity errors plus the feed-forward acceleration gives the collective thrust and the
+// desired body z; the attitude error on SO(3) and the body-rate error give the moments. The
+// desired body rates and their derivative come from the trajectory's jerk and snap by
+// differential flatness (Mellinger and Kumar 2011). Command: thrust and moments.
+#pragma once
+
+#include "control/controller.h"
+#include "vehicle/quad_params.h"
+
+namespace aerobox {
+
+struct Se3Params {
+  // Gains per unit mass and per unit inertia, so that they carry over between vehicles:
+  // force = m (-position_gain e_x - velocity_gain e_v + ...), moment = J (-attitude_gain e_R -
+  // rate_gain e_W) + ...
+  Vec3 position_gain = Vec3(8.0, 8.0, 12.0);      // [1/s^2]
+  Vec3 velocity_gain = Vec3(5.0, 5.0, 7.0);       // [1/s]
+  Vec3 attitude_gain = Vec3(300.0, 300.0, 80.0);  // [1/s^2]
+  Vec3 rate_gain = Vec3(30.0, 30.0, 15.0);        // [1/s]
+  double max_tilt = 0.6;  // [rad] between the force and the world's z (as the cascade's)
+
+  // Throws std::invalid_argument naming the field.
+  void Validate() const;
+};
+
+class Se3Controller : public Controller {
+ public:
+  Se3Controller(const Se3Params& params, const QuadParams& vehicle);
+
+  bool Update(double t, const State& state, const FlatOutput& setpoint,
+              ControlCommand* command) override;
+
+  // ex_R, ey_R, ez_R [-]: the attitude error vector e_R of Lee et al.;
+  // wx_d, wy_d, wz_d [rad/s]: the desired body rates from the trajectory's jerk.
+  std::vector<std::string> ReportColumns() const override;
+  void Report(std::vector<double>* values) const override;
+
+ private:
+  Se3Params params_;
+  double mass_;
+  Vec3 inertia_;
+  Vec3 last_e_R_ = Vec3::Zero();
+  Vec3 last_w_d_ = Vec3::Zero();
+};
+
+}  // namespace aerobox
