@@ -5,49 +5,15 @@
 #include <cmath>
 #include <iostream>
 
+#include "flight_test_util.h"
 #include "mission/flight.h"
-#include "scene/scene_mjcf.h"
 
 namespace aerobox {
 namespace {
 
-// An empty 20 x 20 x 6 m room with the vehicle at rest at `start` (rotors at hover thrust).
-Simulation RoomAt(const Vec3& start, const Map& extra = Map()) {
-  Map map = extra;
-  map.name = "room";
-  map.bounds = {Vec3(-10, -10, 0), Vec3(10, 10, 6)};
-  const QuadParams vehicle;
-  SceneOptions options;
-  options.vehicle_position = start;
-  Simulation sim = Simulation::FromXml(BuildSceneMjcf(map, vehicle, options), "room");
-  sim.SetRotorThrusts(Vec4::Constant(vehicle.HoverThrustPerRotor()));
-  return sim;
-}
-
-// A reference from a position function, derivatives by central differences (h = 1e-4 s: the
-// truncation error is about 1e-8 of the derivative, far below what the controller notices).
-Reference FromFunction(double duration, std::function<Vec3(double)> position) {
-  return {duration, [position](double t, int derivative) -> Vec3 {
-            constexpr double h = 1e-4;
-            if (derivative == kPosition) return position(t);
-            if (derivative == kVelocity) return (position(t + h) - position(t - h)) / (2 * h);
-            return (position(t + h) - 2 * position(t) + position(t - h)) / (h * h);
-          }};
-}
-
-// Integral of a quintic smoothstep rising over `ramp` seconds.
-double RampIntegral(double t, double ramp) {
-  if (t <= 0) return 0;
-  if (t >= ramp) return t - ramp / 2;
-  const double s = t / ramp;
-  return ramp * (2.5 * std::pow(s, 4) - 3 * std::pow(s, 5) + std::pow(s, 6));
-}
-
-// Phase whose rate rises from 0 to `rate` over `ramp` seconds and falls back to 0 over the last
-// `ramp` seconds before `duration`: periodic references start and end at rest.
-double RampedPhase(double t, double rate, double ramp, double duration) {
-  return rate * (RampIntegral(t, ramp) - RampIntegral(t - (duration - ramp), ramp));
-}
+using testing::FromFunction;
+using testing::RampedPhase;
+using testing::RoomAt;
 
 struct Track {
   FlightResult result;

@@ -1,0 +1,199 @@
+#include "app/fly_outputs.h"
+
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+#include "app/files.h"
+#include "common/error.h"
+#include "mission/telemetry_table.h"
+#include "render/png.h"
+
+namespace aerobox {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr double kTreeIntro = 3.0;        // [s] of video in which the RRT* tree grows
+constexpr size_t kTelemetryBlock = 1000;  // rows (4 s of flight at 250 Hz) appended at once
+
+std::string Hud(double t, const State& state, const char* status) {
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(1) << "t " << t << " s   speed " << state.v_W.norm()
+       << " m/s   altitude " << state.p_W.z() << " m   " << status;
+  return text.str();
+}
+
+}  // namespace
+
+void StopOnRequest::OnPlan(const PlanOutcome&) {
+  if (*stop_) throw Interrupted();
+}
+
+void StopOnRequest::OnSample(const TelemetrySample&) {
+  if (*stop_) throw Interrupted();
+}
+
+CsvOutputs::CsvOutputs(std::string folder) : folder_(std::move(folder)) {}
+CsvOutputs::~CsvOutputs() = default;
+
+void CsvOutputs::OnPlan(const PlanOutcome& plan) {
+  if (plan.result.status != PlanStatus::kSolved) return;
+  WriteFileAtomically((fs::path(folder_) / "path.csv").string(), PathCsv(plan.result.path));
+  if (plan.trajectory->status != TrajectoryStatus::kSolved) return;
+  WriteFileAtomically((fs::path(folder_) / "trajectory.csv").string(),
+                      TrajectoryCsv(plan.trajectory->trajectory));
+}
+
+void CsvOutputs::OnFlightStart(const Simulation&, const Controller& controller) {
+  telemetry_file_ = std::make_unique<StreamingFile>((fs::path(folder_) / "telemetry.csv").string());
+  controller_columns_ = controller.ReportColumns();
+  block_ = std::make_unique<CsvTable>(TelemetryTable(controller_columns_));
+  header_length_ = block_->Text().size();
+  telemetry_file_->Append(block_->Text());  // the header; blocks of rows follow
+}
+
+void CsvOutputs::OnSample(const TelemetrySample& sample) {
+  AddTelemetryRow(sample, block_.get());
+  if (block_->rows() < kTelemetryBlock) return;
+  telemetry_file_->Append(block_->Text().substr(header_length_));
+  *block_ = TelemetryTable(controller_columns_);
+}
+
+void CsvOutputs::OnFlightEnd(const Simulation&, const FlightResult&) {
+  telemetry_file_->Append(block_->Text().substr(header_length_));
+  telemetry_file_->Commit();
+}
+
+RenderOutputs::RenderOutputs(std::string folder, const FlightSetup& setup,
+                             const RenderOptions& options, std::ostream& err)
+    : folder_(std::move(folder)), setup_(setup), options_(options), err_(err) {}
+
+void RenderOutputs::OnScene(Simulation& sim, const std::vector<bool>& kept) {
+  RenderSettings settings(options_.width, options_.height, options_.quality);
+  // in a city the chase camera stays farther back, to show the streets around the vehicle
+  if (IsCityScale(setup_.map)) settings.chase_distance = 6.0;
+  // the boxes the scene left out are drawn as scenery
+  for (size_t i = 0; i < kept.size(); ++i) {
+    if (kept[i]) continue;
+    const Box& box = setup_.map.boxes[i];
+    settings.scenery.push_back({box.extent.Center(), box.extent.HalfSize(), box.rgb});
+  }
+  try {
+    renderer_ = std::make_unique<Renderer>(&sim, settings);
+  } catch (const std::invalid_argument& e) {
+    throw InputError({"command line", 0}, "--size", e.what());
+  }
+  renderer_->ReleaseFromThread();  // the flight renders from the main thread
+}
+
+void RenderOutputs::OnPlan(const PlanOutcome& plan) {
+  overlay_.path = plan.result.path;
+  overlay_.start = plan.start.used;
+  overlay_.goal = plan.goal.used;
+  overlay_.tree = plan.result.tree;
+  if (!plan.trajectory || plan.trajectory->status != TrajectoryStatus::kSolved) return;
+  const PiecewiseTrajectory& trajectory = plan.trajectory->trajectory;
+  for (double t = 0; t <= trajectory.duration(); t += 0.05) {
+    overlay_.trajectory.push_back(trajectory.Evaluate(t, kPosition));
+    overlay_.speeds.push_back(trajectory.Evaluate(t, kVelocity).norm());
+  }
+}
+
+void RenderOutputs::Frame(const std::string& text, const CameraSpec& camera,
+                          const Overlay& overlay) {
+  Overlay shown = overlay;
+  shown.text = text;
+  renderer_->Render(camera, shown, &image_);
+}
+
+void RenderOutputs::OnFlightStart(const Simulation&, const Controller&) {
+  if (options_.video) {
+    const std::string path = (fs::path(folder_) / "video.mp4").string();
+    try {
+      video_ = std::make_unique<VideoEncoder>(path, options_.width, options_.height, options_.fps);
+    } catch (const std::runtime_error& e) {
+      throw InputError({path, 0}, "video", e.what());
+    }
+  }
+  if (options_.frames_every > 0) {
+    const fs::path frames = fs::path(folder_) / "frames";
+    std::error_code ec;
+    fs::create_directories(frames, ec);
+    if (ec)
+      throw InputError({frames.string(), 0}, "--frames-every", "cannot create: " + ec.message());
+  }
+  // --show-tree: the tree grows in the video's first seconds, seen from the overview camera,
+  // as the planner added its edges; then it stays, and overview.png shows it whole
+  if (options_.show_tree && overlay_.tree.empty()) {
+    err_ << "aerobox: --show-tree: no RRT* tree (the lattice planned this map)\n";
+  }
+  if (video_ && !overlay_.tree.empty()) {
+    Overlay growing = overlay_;
+    growing.path.clear();
+    growing.trajectory.clear();
+    growing.speeds.clear();
+    const int intro = std::max(1, static_cast<int>(std::lround(kTreeIntro * options_.fps)));
+    for (int f = 1; f <= intro; ++f) {
+      growing.tree_shown = overlay_.tree.size() * f / intro;
+      Frame("planning: RRT* tree, " + std::to_string(growing.tree_shown) + " edges",
+            {CameraKind::kOverview, ""}, growing);
+      video_->AddFrame(image_);
+      ++frames_;
+    }
+  }
+  overlay_.tree_shown = overlay_.tree.size();
+}
+
+void RenderOutputs::OnSample(const TelemetrySample& s) {
+  if (overlay_.trail.empty() || (overlay_.trail.back() - s.state.p_W).norm() > 0.02) {
+    overlay_.trail.push_back(s.state.p_W);
+  }
+  // frames are sampled on simulation time
+  const bool png_due = options_.frames_every > 0 && s.t + 1e-9 >= next_png_;
+  const bool video_due = video_ && s.t + 1e-9 >= next_frame_;
+  if (!png_due && !video_due) return;
+  Frame(Hud(s.t, s.state, "flying"), options_.camera, overlay_);
+  if (png_due) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "frame_%06d.png", png_frames_++);
+    WriteFileAtomically((fs::path(folder_) / "frames" / name).string(), EncodePng(image_));
+    next_png_ += options_.frames_every;
+  }
+  if (!video_due) return;
+  next_frame_ += options_.speed / options_.fps;  // [s] of simulation per frame
+  video_->AddFrame(image_);
+  ++frames_;
+}
+
+void RenderOutputs::OnFlightEnd(const Simulation& sim, const FlightResult& result) {
+  if (video_) video_->Finish();
+  // overview.png: the map, the path, the trajectory and the flown trail in one picture
+  Frame(Hud(result.time, sim.VehicleState(), ToString(result.status)), {CameraKind::kOverview, ""},
+        overlay_);
+  WriteFileAtomically((fs::path(folder_) / "overview.png").string(), EncodePng(image_));
+}
+
+ProgressLine::~ProgressLine() {
+  if (written_) err_ << "\r" << std::string(60, ' ') << "\r" << std::flush;
+}
+
+void ProgressLine::OnPlan(const PlanOutcome& plan) {
+  if (plan.trajectory) expected_ = plan.trajectory->stats.duration;
+  begin_ = std::chrono::steady_clock::now();
+}
+
+void ProgressLine::OnSample(const TelemetrySample& s) {
+  const int frames = frames_->video_frames();
+  if (frames < shown_ + 10) return;
+  shown_ = frames;
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - begin_).count();
+  const double left = wall * std::max(0.0, expected_ - s.t) / std::max(s.t, 1e-9);
+  err_ << "\rframe " << frames << "  " << std::fixed << std::setprecision(0)
+       << frames / std::max(wall, 1e-9) << " fps  flight " << std::setprecision(1) << s.t << " / "
+       << expected_ << " s  about " << std::setprecision(0) << left << " s left   " << std::flush;
+  written_ = true;
+}
+
+}  // namespace aerobox

@@ -1,0 +1,114 @@
+// The observers of `aerobox fly` (mission/mission.h): each writes or shows one kind of output.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+
+#include "mission/mission.h"
+#include "render/renderer.h"
+#include "render/video_encoder.h"
+#include "telemetry/csv_table.h"
+
+namespace aerobox {
+
+class StreamingFile;
+
+// Thrown from an observer when Ctrl-C asked the run to stop.
+struct Interrupted : std::runtime_error {
+  Interrupted() : std::runtime_error("interrupted") {}
+};
+
+// Stops the run at the next control step once `*stop` is set (by the SIGINT handler).
+class StopOnRequest : public MissionObserver {
+ public:
+  explicit StopOnRequest(const std::atomic<bool>* stop) : stop_(stop) {}
+  void OnPlan(const PlanOutcome&) override;
+  void OnSample(const TelemetrySample&) override;
+
+ private:
+  const std::atomic<bool>* stop_;
+};
+
+// path.csv and trajectory.csv once planned; telemetry.csv streamed during the flight (in blocks
+// of rows, under a temporary name, renamed when the flight is over).
+class CsvOutputs : public MissionObserver {
+ public:
+  explicit CsvOutputs(std::string folder);
+  ~CsvOutputs() override;
+  void OnPlan(const PlanOutcome& plan) override;
+  void OnFlightStart(const Simulation&, const Controller& controller) override;
+  void OnSample(const TelemetrySample& sample) override;
+  void OnFlightEnd(const Simulation&, const FlightResult&) override;
+
+ private:
+  std::string folder_;
+  std::unique_ptr<StreamingFile> telemetry_file_;
+  std::vector<std::string> controller_columns_;
+  std::unique_ptr<CsvTable> block_;
+  size_t header_length_ = 0;
+};
+
+struct RenderOptions {
+  int width = 640;  // [pixels]
+  int height = 480;
+  Quality quality = Quality::kFast;
+  CameraSpec camera;
+  bool video = true;          // video.mp4
+  int fps = 30;               // video frames per second
+  double speed = 1.0;         // playback speed
+  double frames_every = 0.0;  // [s] between frames/*.png (0: none)
+  bool show_tree = false;     // the RRT* tree's growth opens the video
+};
+
+// video.mp4, frames/*.png and overview.png, from a renderer made as soon as the scene exists.
+class RenderOutputs : public MissionObserver {
+ public:
+  RenderOutputs(std::string folder, const FlightSetup& setup, const RenderOptions& options,
+                std::ostream& err);
+  void OnScene(Simulation& sim, const std::vector<bool>& kept) override;
+  void OnPlan(const PlanOutcome& plan) override;
+  void OnFlightStart(const Simulation&, const Controller&) override;
+  void OnSample(const TelemetrySample& sample) override;
+  void OnFlightEnd(const Simulation& sim, const FlightResult& result) override;
+
+  int video_frames() const { return frames_; }
+
+ private:
+  void Frame(const std::string& text, const CameraSpec& camera, const Overlay& overlay);
+
+  std::string folder_;
+  const FlightSetup& setup_;
+  RenderOptions options_;
+  std::ostream& err_;
+  std::unique_ptr<Renderer> renderer_;
+  std::unique_ptr<VideoEncoder> video_;
+  Overlay overlay_;
+  Image image_;
+  double next_frame_ = 0.0;
+  double next_png_ = 0.0;
+  int frames_ = 0;
+  int png_frames_ = 0;
+};
+
+// A progress line on a terminal: frames, frames per second, flight time and time left.
+class ProgressLine : public MissionObserver {
+ public:
+  ProgressLine(const RenderOutputs* frames, std::ostream& err) : frames_(frames), err_(err) {}
+  ~ProgressLine() override;
+  void OnPlan(const PlanOutcome& plan) override;
+  void OnSample(const TelemetrySample& sample) override;
+
+ private:
+  const RenderOutputs* frames_;
+  std::ostream& err_;
+  double expected_ = 0.0;  // [s] of flight
+  int shown_ = 0;          // frames when the line was last written
+  bool written_ = false;
+  std::chrono::steady_clock::time_point begin_;
+};
+
+}  // namespace aerobox

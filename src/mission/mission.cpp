@@ -1,0 +1,119 @@
+#include "mission/mission.h"
+
+#include <chrono>
+#include <future>
+#include <optional>
+
+#include "geometry/collision_world.h"
+#include "scene/scene_mjcf.h"
+
+namespace aerobox {
+
+const char* ToString(MissionStatus status) {
+  switch (status) {
+    case MissionStatus::kReachedGoal:
+      return "reached goal";
+    case MissionStatus::kNoPath:
+      return "no path";
+    case MissionStatus::kNoTrajectory:
+      return "no feasible trajectory";
+    case MissionStatus::kFlightFailed:
+      return "flight failed";
+  }
+  return "?";
+}
+
+namespace {
+
+// The trajectory's points every 0.1 s and the vehicle's resting start: what the route of a city
+// flight passes.
+std::vector<Vec3> Route(const FlightSetup& setup, const PiecewiseTrajectory& trajectory) {
+  std::vector<Vec3> route;
+  for (double t = 0; t <= trajectory.duration(); t += 0.1) {
+    route.push_back(trajectory.Evaluate3(t, kPosition));
+  }
+  route.push_back(trajectory.Evaluate3(trajectory.duration(), kPosition));
+  route.push_back(VehicleRestPosition(setup.map, setup.vehicle, setup.start));
+  return route;
+}
+
+}  // namespace
+
+MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
+  setup.Validate();
+  std::unique_ptr<Simulation> sim;
+  const auto load_scene = [&](const std::vector<bool>& kept) {
+    sim = std::make_unique<Simulation>(
+        Simulation::FromXml(SceneMjcfFor(setup, kept), setup.name + " (scene)"));
+    for (MissionObserver* observer : parts.observers) observer->OnScene(*sim, kept);
+  };
+  const bool city = IsCityScale(setup.map);
+  std::future<void> scene;
+  if (!city) scene = std::async(std::launch::async, load_scene, std::vector<bool>());
+
+  // plan and solve; the scene thread is joined on every way out
+  MissionResult result;
+  try {
+    result.plan = PlanFlight(setup);
+  } catch (...) {
+    if (scene.valid()) scene.wait();
+    throw;
+  }
+  if (scene.valid()) scene.get();  // rethrows what loading the scene threw
+  const PlanOutcome& plan = result.plan;
+  for (MissionObserver* observer : parts.observers) observer->OnPlan(plan);
+  if (plan.result.status != PlanStatus::kSolved) {
+    result.status = MissionStatus::kNoPath;
+    return result;
+  }
+  if (plan.trajectory->status != TrajectoryStatus::kSolved) {
+    result.status = MissionStatus::kNoTrajectory;
+    return result;
+  }
+  const PiecewiseTrajectory& trajectory = plan.trajectory->trajectory;
+  if (city) {
+    // MuJoCo 2.2 tests the vehicle against every geom of the world body at each step: 3845
+    // buildings make a step 60 times dearer. The flight is lost (fly-away) once it is
+    // flyaway_distance from its setpoint, so buildings farther than kCityRouteMargin from the
+    // trajectory cannot be reached; they are drawn, not simulated. Clearance is still measured
+    // against every box.
+    if (!(setup.flight.flyaway_distance < kCityRouteMargin)) {
+      throw std::invalid_argument("FlightParams.flyaway_distance must stay below " +
+                                  std::to_string(kCityRouteMargin) + " m in a city");
+    }
+    load_scene(RouteBoxes(setup.map, Route(setup, trajectory), kCityRouteMargin));
+  }
+
+  // fly: the vehicle rests at the start (on the floor when the start is at floor level)
+  PlaceVehicleAtStart(setup.map, setup.vehicle, setup.start, plan.start.used, sim.get());
+  const CollisionWorld world(setup.map, CollisionParams{setup.vehicle.collision_size, 0.0});
+  std::unique_ptr<Controller> made;
+  Controller* controller = parts.controller;
+  if (controller == nullptr) {
+    made = MakeController(setup.controller, setup.vehicle);
+    controller = made.get();
+  }
+  for (MissionObserver* observer : parts.observers) observer->OnFlightStart(*sim, *controller);
+  FlightLoop loop;
+  loop.vehicle = &setup.vehicle;
+  loop.controller = controller;
+  loop.control_rate = setup.controller.rate;
+  loop.inner = setup.controller.inner;
+  loop.clearance = [&world](const Vec3& p) { return world.Clearance(p); };
+  if (!parts.observers.empty()) {
+    loop.telemetry = [&parts](const TelemetrySample& s) {
+      for (MissionObserver* observer : parts.observers) observer->OnSample(s);
+    };
+  }
+  const auto begin = std::chrono::steady_clock::now();
+  result.flight = FlyTrajectory(ReferenceOf(trajectory), setup.flight, loop, sim.get());
+  result.flight_wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  result.flown = true;
+  result.status = result.flight.status == FlightStatus::kReachedGoal ? MissionStatus::kReachedGoal
+                                                                     : MissionStatus::kFlightFailed;
+  for (MissionObserver* observer : parts.observers) observer->OnFlightEnd(*sim, result.flight);
+  return result;
+}
+
+}  // namespace aerobox

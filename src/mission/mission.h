@@ -1,0 +1,64 @@
+// A run as a composition (after RotorPy's Environment and Drake's diagrams): a set-up (world,
+// vehicle, planner and trajectory settings, controller, flight settings) and observers in; a
+// status and the result out. Planning, the trajectory, the scene and the closed loop are
+// composed here; what is written, drawn or printed is the observers' business. No command
+// line, TOML or files inside.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "control/controller.h"
+#include "mission/flight.h"
+#include "mission/plan.h"
+#include "mission/setup.h"
+#include "sim/simulation.h"
+
+namespace aerobox {
+
+// Told what happens, in this order; every call may throw to stop the run (the exception
+// leaves RunMission after the scene thread has been joined).
+class MissionObserver {
+ public:
+  virtual ~MissionObserver() = default;
+  // The scene is loaded. A small map's scene does not depend on the plan, so this runs on a
+  // second thread while the planner works (it must touch nothing else); a city's scene keeps
+  // only the boxes near the route (`kept`, one flag per map box; empty: all), so it comes
+  // after the plan, on the calling thread.
+  virtual void OnScene(Simulation&, const std::vector<bool>& /*kept*/) {}
+  // The path and the trajectory, or the status that stopped them.
+  virtual void OnPlan(const PlanOutcome&) {}
+  // The vehicle sits at its start; the controller is about to fly.
+  virtual void OnFlightStart(const Simulation&, const Controller&) {}
+  // One per control step.
+  virtual void OnSample(const TelemetrySample&) {}
+  virtual void OnFlightEnd(const Simulation&, const FlightResult&) {}
+};
+
+enum class MissionStatus { kReachedGoal, kNoPath, kNoTrajectory, kFlightFailed };
+const char* ToString(MissionStatus status);
+
+struct MissionResult {
+  MissionStatus status = MissionStatus::kNoPath;
+  PlanOutcome plan;
+  bool flown = false;
+  FlightResult flight;            // when flown
+  double flight_wall_time = 0.0;  // [s]
+};
+
+struct MissionParts {
+  // The controller; nullptr: the one setup.controller.kind names, from the registry.
+  Controller* controller = nullptr;
+  std::vector<MissionObserver*> observers;  // not owned
+};
+
+// Buildings (boxes) farther than this from a city flight's trajectory are left out of its
+// scene [m]: see RunMission.
+inline constexpr double kCityRouteMargin = 25.0;
+
+// Plans, solves, loads the scene, places the vehicle and flies. Throws InputError for unusable
+// endpoints and std::invalid_argument for bad settings; a missing path, trajectory or a failed
+// flight is a status.
+MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts);
+
+}  // namespace aerobox
