@@ -143,7 +143,14 @@ int RunPlan(const FlightSetup& setup, const std::string& out_dir, std::ostream& 
     out << "plan " << setup.name << ": " << ToString(plan.result.status) << " after "
         << stats.iterations << " iterations (" << timing.str() << " s), seed " << setup.seed
         << "\n";
-    return plan.result.status == PlanStatus::kNoPathWithinBudget ? kExitNoPath : kExitBadInput;
+    if (plan.result.status == PlanStatus::kPathBlocked) {
+      out << "  the given path leaves free space at point " << stats.blocked_leg
+          << " (0 is the start) or on the leg that ends there\n";
+    }
+    return plan.result.status == PlanStatus::kNoPathWithinBudget ||
+                   plan.result.status == PlanStatus::kPathBlocked
+               ? kExitNoPath
+               : kExitBadInput;
   }
   if (plan.lattice) {
     out << std::fixed << std::setprecision(3) << "lattice: " << plan.lattice->nodes << " nodes, "
@@ -153,10 +160,15 @@ int RunPlan(const FlightSetup& setup, const std::string& out_dir, std::ostream& 
   WriteFileAtomically(path_file, PathCsv(plan.result.path));
   std::ostringstream line;
   line << std::fixed << std::setprecision(2) << "plan " << setup.name << ": solved, "
-       << plan.result.path.size() << " waypoints, " << stats.final_cost << " m (first solution "
-       << stats.first_cost << " m after " << std::setprecision(1)
-       << 1e3 * stats.time_to_first_solution << " ms), " << stats.iterations << " iterations in "
-       << timing.str() << " s, seed " << setup.seed << " -> " << path_file << "\n";
+       << plan.result.path.size() << " waypoints, " << stats.final_cost << " m ";
+  if (plan.fallback_spacing > 0) {
+    line << "by a " << plan.fallback_spacing << " m lattice after RRT* found no path in "
+         << stats.iterations << " iterations, ";
+  } else {
+    line << "(first solution " << stats.first_cost << " m after " << std::setprecision(1)
+         << 1e3 * stats.time_to_first_solution << " ms), " << stats.iterations << " iterations, ";
+  }
+  line << "in " << timing.str() << " s, seed " << setup.seed << " -> " << path_file << "\n";
   out << line.str();
 
   const TrajectoryResult& trajectory = *plan.trajectory;

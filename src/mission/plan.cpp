@@ -8,6 +8,7 @@
 #include "common/error.h"
 #include "common/fault_injection.h"
 #include "common/number_format.h"
+#include "planning/planner.h"
 #include "telemetry/csv_table.h"
 
 namespace aerobox {
@@ -102,6 +103,24 @@ std::pair<Endpoint, Endpoint> ResolveEndpoints(const Map& map, const CollisionWo
 
 bool IsCityScale(const Map& map) { return map.bounds.Size().head<2>().maxCoeff() > 200.0; }
 
+std::string PlannerKindFor(const FlightSetup& setup) {
+  if (setup.planning.planner != "auto") return setup.planning.planner;
+  return IsCityScale(setup.map) ? "lattice" : "rrt_star";
+}
+
+LatticeParams FallbackLattice(const Aabb& free_bounds) {
+  // as fine as kMaxFallbackNodes points allow, and no finer than 5 cm
+  constexpr double kMaxFallbackNodes = 3e5;
+  constexpr double kFinest = 0.05;  // [m]
+  const Vec3 size = free_bounds.Size().cwiseMax(kFinest);
+  LatticeParams params;
+  params.spacing = std::max(kFinest, std::cbrt(size.prod() / kMaxFallbackNodes));
+  params.vertical_spacing = params.spacing;
+  params.min_altitude = free_bounds.min.z();
+  params.max_altitude = free_bounds.max.z();
+  return params;
+}
+
 PlanOutcome PlanFlight(const FlightSetup& setup) {
   const PlanningSettings& settings = setup.planning;
   if (!setup.goal) throw InputError({setup.map.source, 0}, "goal", "no goal given");
@@ -109,20 +128,38 @@ PlanOutcome PlanFlight(const FlightSetup& setup) {
   PlanOutcome outcome;
   std::tie(outcome.start, outcome.goal) = ResolveEndpoints(
       setup.map, world, setup.start, *setup.goal, setup.start_where, setup.goal_where);
-  RrtStarParams rrt = settings.rrt;
-  rrt.seed = setup.seed;
-  const Validity validity{
-      [&world](const Vec3& p) { return world.IsPointFree(p); },
-      [&world](const Vec3& a, const Vec3& b) { return world.IsSegmentFree(a, b); }};
-  const bool lattice =
-      settings.planner == "lattice" || (settings.planner == "auto" && IsCityScale(setup.map));
-  if (lattice) {
-    const LatticePlanner planner(world.free_bounds(), validity, LatticeParamsFor(setup));
-    outcome.result = planner.Plan(outcome.start.used, outcome.goal.used);
-    outcome.lattice = planner.stats();
-  } else {
-    outcome.result =
-        PlanRrtStar(outcome.start.used, outcome.goal.used, world.free_bounds(), validity, rrt);
+  const PlannerContext context{
+      world.free_bounds(),
+      Validity{[&world](const Vec3& p) { return world.IsPointFree(p); },
+               [&world](const Vec3& a, const Vec3& b) { return world.IsSegmentFree(a, b); }},
+      setup.seed};
+  PlannerConfig config;
+  config.kind = PlannerKindFor(setup);
+  config.rrt = settings.rrt;
+  config.lattice = LatticeParamsFor(setup);
+  config.waypoints = settings.waypoints;
+  outcome.planner = config.kind;
+  outcome.result = MakePlanner(config, context)->Plan(outcome.start.used, outcome.goal.used);
+  if (config.kind == "lattice") {
+    outcome.lattice = LatticeStats{outcome.result.stats.nodes, outcome.result.stats.edges,
+                                   outcome.result.stats.build_time};
+  }
+  // RRT* gave up on a map it could not search to the end in its budget (long narrow passages):
+  // a fine lattice over the map is exhaustive at its spacing, so "no path" is said only when
+  // neither finds one
+  if (outcome.result.status == PlanStatus::kNoPathWithinBudget && config.kind == "rrt_star" &&
+      settings.lattice_fallback) {
+    config.kind = "lattice";
+    config.lattice = FallbackLattice(world.free_bounds());
+    PlanResult fallback = MakePlanner(config, context)->Plan(outcome.start.used, outcome.goal.used);
+    outcome.fallback_spacing = config.lattice.spacing;
+    outcome.lattice =
+        LatticeStats{fallback.stats.nodes, fallback.stats.edges, fallback.stats.build_time};
+    fallback.stats.planning_time += outcome.result.stats.planning_time;
+    fallback.stats.iterations = outcome.result.stats.iterations;
+    fallback.tree = std::move(outcome.result.tree);
+    outcome.result = std::move(fallback);
+    outcome.planner = "lattice (RRT* found no path)";
   }
   if (outcome.result.status != PlanStatus::kSolved) return outcome;
   outcome.trajectory = TrajectoryAlong(setup, outcome.result.path);

@@ -43,7 +43,17 @@ struct PlanOutcome {
   std::optional<TrajectoryResult> trajectory;
   // when the lattice planned: its size and build time (query time is result.stats)
   std::optional<LatticeStats> lattice;
+  std::string planner;            // the planner's name, as registered
+  double fallback_spacing = 0.0;  // [m] of the lattice that took over from RRT* (0: none)
 };
+
+// The planner a set-up uses: [planner] kind, where "auto" is the lattice for a city-sized map
+// and RRT* otherwise.
+std::string PlannerKindFor(const FlightSetup& setup);
+
+// The lattice that takes over when RRT* finds no path: over the whole free space, as fine as
+// 300,000 points allow (5 cm at the finest).
+LatticeParams FallbackLattice(const Aabb& free_bounds);
 
 // Plans the set-up's start to goal with its planning settings (its seed seeds the planner), then
 // turns the path into a trajectory that keeps the trajectory clearance. Throws InputError for

@@ -12,8 +12,8 @@
 
 namespace aerobox {
 
-// The app's planner defaults differ from RrtStarParams' in one way: they stop on an iteration
-// count, so that the same seed gives the same path on any machine; the time budget is only a
+// The app's planner defaults differ from RrtStarParams' in one way: they stop on iteration
+// counts, so that the same seed gives the same path on any machine; the time budget is only a
 // safety cap.
 struct PlanningSettings {
   // What the planner keeps from obstacles and the bounds [m], beyond the vehicle's own box
@@ -21,13 +21,18 @@ struct PlanningSettings {
   double clearance = 0.10;
   RrtStarParams rrt = [] {
     RrtStarParams p;
-    p.max_iterations = 4000;
+    p.max_iterations = 4000;          // after the first solution
+    p.max_search_iterations = 20000;  // before it; then the lattice takes over
     p.time_budget = 10.0;
     return p;
   }();
   // "rrt_star", "lattice", or "auto": the lattice for maps wider than 200 m (a city), where
   // one query crosses hundreds of metres, RRT* otherwise
   std::string planner = "auto";
+  // planner "waypoints": the path start, these, goal [m]
+  std::vector<Vec3> waypoints;
+  // when RRT* finds no path, a fine lattice over the map searches it exhaustively
+  bool lattice_fallback = true;
   LatticeParams lattice;  // altitudes relative to the map's floor: see PlanFlight
   TrajectoryParams trajectory;
   // minsnap (ours), or a baseline on min-snap's waypoints and times (trajectory/baselines.h)

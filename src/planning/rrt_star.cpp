@@ -107,9 +107,17 @@ class Planner {
 
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     long& iterations = result.stats.iterations;
-    while ((params_.max_iterations == 0 || iterations < params_.max_iterations) &&
-           elapsed() < params_.time_budget &&
-           !(params_.stop_at_first_solution && best_parent_ >= 0)) {
+    long searched = 0;  // iterations before the first solution
+    const auto more = [&] {
+      if (elapsed() >= params_.time_budget) return false;
+      if (best_parent_ < 0) {
+        return params_.max_search_iterations == 0 || searched < params_.max_search_iterations;
+      }
+      return !params_.stop_at_first_solution &&
+             (params_.max_iterations == 0 || iterations - searched < params_.max_iterations);
+    };
+    while (more()) {
+      if (best_parent_ < 0) ++searched;
       ++iterations;
       const Vec3 target = unit(rng_) < params_.goal_bias
                               ? goal_
@@ -220,6 +228,7 @@ class Planner {
     if (best_parent_ < 0 || (best_parent_ == before && best_cost_ == before_cost)) return;
     if (before < 0) {
       stats->time_to_first_solution = now;
+      stats->iterations_to_first_solution = stats->iterations;
       stats->first_cost = best_cost_;
     }
     stats->cost_history.emplace_back(now, best_cost_);
@@ -265,6 +274,9 @@ void RrtStarParams::Validate() const {
   if (!(std::isfinite(rewire_factor) && rewire_factor > 0)) fail("rewire_factor", rewire_factor);
   if (!(time_budget > 0)) fail("time_budget", time_budget);
   if (max_iterations < 0) fail("max_iterations", static_cast<double>(max_iterations));
+  if (max_search_iterations < 0) {
+    fail("max_search_iterations", static_cast<double>(max_search_iterations));
+  }
   if (shortcut_attempts < 0) fail("shortcut_attempts", shortcut_attempts);
 }
 
@@ -278,6 +290,8 @@ const char* ToString(PlanStatus status) {
       return "start invalid";
     case PlanStatus::kGoalInvalid:
       return "goal invalid";
+    case PlanStatus::kPathBlocked:
+      return "the given path is not free";
   }
   return "?";
 }

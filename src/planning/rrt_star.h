@@ -23,9 +23,13 @@ struct RrtStarParams {
   double rewire_factor = 1.1;
   // Stop after this much wall time [s] (> 0) ...
   double time_budget = 1.0;
-  // ... or after this many iterations (0: no limit). With a limit and an ample time budget the
-  // result depends only on the seed.
+  // ... or after this many iterations once a first solution exists (0: no limit): the anytime
+  // improvement. The search for the first solution is not cut short by it, so a narrow map is
+  // not given up early; with an ample time budget the result depends only on the seed.
   long max_iterations = 0;
+  // At most this many iterations without a solution (0: no limit, only the time budget): a
+  // deterministic end for maps without a path.
+  long max_search_iterations = 0;
   // Stop as soon as a first solution exists (then skip the anytime improvement).
   bool stop_at_first_solution = false;
   // Sample only where the path can still improve, once there is one.
@@ -46,17 +50,23 @@ enum class PlanStatus {
   kNoPathWithinBudget,  // no path found before the time or iteration budget ran out
   kStartInvalid,
   kGoalInvalid,
+  kPathBlocked,  // a given path (the waypoints planner) leaves free space
 };
 const char* ToString(PlanStatus status);
 
 struct PlanStats {
   long iterations = 0;
-  size_t nodes = 0;                      // in the tree at the end
-  double time_to_first_solution = -1.0;  // [s]; -1 when none was found
-  double first_cost = -1.0;              // [m] length of the first solution
-  double tree_cost = -1.0;               // [m] the tree's best path at the end
-  double final_cost = -1.0;              // [m] after shortcutting and pruning
-  double planning_time = 0.0;            // [s] including simplification
+  size_t nodes = 0;                        // in the tree at the end
+  double time_to_first_solution = -1.0;    // [s]; -1 when none was found
+  long iterations_to_first_solution = -1;  // -1 when none was found
+  double first_cost = -1.0;                // [m] length of the first solution
+  double tree_cost = -1.0;                 // [m] the tree's best path at the end
+  double final_cost = -1.0;                // [m] after shortcutting and pruning
+  double planning_time = 0.0;              // [s] including simplification
+  // a graph built before the queries (the lattice): its edges and build time [s]
+  size_t edges = 0;
+  double build_time = 0.0;
+  int blocked_leg = -1;  // kPathBlocked: the first point or leg (ending there) not free
   // (time [s], tree path length [m]) each time the best path improved: the anytime curve
   std::vector<std::pair<double, double>> cost_history;
 };

@@ -8,6 +8,7 @@
 #include "common/error.h"
 #include "common/number_format.h"
 #include "map/map_reader.h"
+#include "planning/planner.h"
 #include "scenario/read_file.h"
 #include "vehicle/quad_params.h"
 
@@ -72,11 +73,25 @@ void ReadPlanner(const toml::table& table, const std::string& file, PlanningSett
       rrt.shortcut_attempts = static_cast<int>(Number(node, file, field, 0, 1e6));
     } else if (name == "kind") {
       const std::optional<std::string> value = node.value<std::string>();
-      if (!value || (*value != "auto" && *value != "rrt_star" && *value != "lattice")) {
-        throw InputError({file, LineOf(node)}, field,
-                         "expected \"auto\", \"rrt_star\" or \"lattice\"");
+      if (!value || (*value != "auto" && Planners().Find(*value) == nullptr)) {
+        throw InputError({file, LineOf(node)}, field, "expected auto, " + Planners().NameList());
       }
       settings->planner = *value;
+    } else if (name == "waypoints") {
+      const toml::array* points = node.as_array();
+      if (points == nullptr) {
+        throw InputError({file, LineOf(node)}, field,
+                         "expected an array of points [[x, y, z], ...]");
+      }
+      settings->waypoints.clear();
+      for (size_t i = 0; i < points->size(); ++i) {
+        settings->waypoints.push_back(
+            ReadPoint((*points)[i], file, (field + "[" + std::to_string(i) + "]").c_str()));
+      }
+    } else if (name == "max_search_iterations") {
+      rrt.max_search_iterations = static_cast<long>(Number(node, file, field, 0, 1e8));
+    } else if (name == "lattice_fallback") {
+      settings->lattice_fallback = Boolean(node, file, field);
     } else if (name == "lattice_spacing") {
       settings->lattice.spacing = Number(node, file, field, 0.5, 100.0);
       settings->lattice.vertical_spacing = settings->lattice.spacing;
@@ -86,9 +101,10 @@ void ReadPlanner(const toml::table& table, const std::string& file, PlanningSett
       rrt.informed = node.as_boolean()->get();
     } else {
       throw InputError({file, LineOf(node)}, field,
-                       "unknown key (expected kind, clearance, max_iterations, time_budget, "
-                       "max_step, goal_bias, rewire_factor, informed, shortcut_attempts or "
-                       "lattice_spacing)");
+                       "unknown key (expected kind, clearance, max_iterations, "
+                       "max_search_iterations, time_budget, max_step, goal_bias, rewire_factor, "
+                       "informed, shortcut_attempts, lattice_spacing, lattice_fallback or "
+                       "waypoints)");
     }
   }
 }

@@ -5,8 +5,10 @@
 
 #include "../planning/planning_test_util.h"
 #include "common/error.h"
+#include "common/number_format.h"
 #include "mission/plan.h"
 #include "planning/path_simplify.h"
+#include "planning/planner.h"
 #include "test_support.h"
 
 namespace aerobox {
@@ -140,6 +142,117 @@ TEST_CASE("the city: the lattice plans 600-700 m queries that pass the dense re-
   }
   MESSAGE("city: " << solved << " of " << queries << " queries solved");
   CHECK(solved == queries);
+}
+
+}  // namespace aerobox
+
+namespace aerobox {
+namespace {
+
+// A 6 x 4.4 x 1 m serpentine: seven walls, each open at one end, leave one 0.45 m wide corridor
+// (0.15 m for the vehicle's centre, with its clearance) about 47 m long.
+std::string SnakeMap() {
+  std::string text = "boundary 0 0 0 6 4.4 1\n";
+  double y = 0.45;
+  for (int i = 0; i < 7; ++i, y += 0.55) {
+    text += (i % 2 == 0 ? "block 0 " : "block 0.45 ") + FormatNumber(y) + " 0 " +
+            (i % 2 == 0 ? "5.55 " : "6 ") + FormatNumber(y + 0.1) + " 1\n";
+  }
+  return text;
+}
+
+FlightSetup SnakeSetup(const testing::TempDir& dir, const std::string& planner_table) {
+  dir.Write("snake.txt", SnakeMap());
+  const std::string scenario = dir.Write("snake.toml",
+                                         "map = \"snake.txt\"\nstart = [0.3, 0.2, 0.5]\n"
+                                         "goal = [0.3, 4.2, 0.5]\n[planner]\n" +
+                                             planner_table);
+  return LoadFlightSetup(scenario, {});
+}
+
+// A planner of the test's own: straight to the goal when that is free.
+class StraightPlanner : public Planner {
+ public:
+  explicit StraightPlanner(const PlannerContext& context) : context_(context) {}
+  PlanResult Plan(const Vec3& start, const Vec3& goal) override {
+    PlanResult result;
+    if (context_.validity.motion(start, goal)) {
+      result.status = PlanStatus::kSolved;
+      result.path = {start, goal};
+    }
+    return result;
+  }
+
+ private:
+  PlannerContext context_;
+};
+
+}  // namespace
+
+TEST_CASE("a small map with long narrow corridors is never reported as having no path") {
+  const testing::TempDir dir;
+  // RRT* needs about 15,000 samples here: its 4000 iterations count from the first solution
+  const PlanOutcome rrt = PlanFlight(SnakeSetup(dir, ""));
+  REQUIRE(rrt.result.status == PlanStatus::kSolved);
+  CHECK(rrt.planner == "rrt_star");
+  CHECK(rrt.result.stats.iterations_to_first_solution > 4000);
+  CHECK(testing::DenselyFree(SnakeSetup(dir, "").map, SnakeSetup(dir, "").PlannerCollision(),
+                             rrt.result.path));
+  CHECK(rrt.result.stats.final_cost > 40);  // along the corridor, not through a wall
+
+  // with a search budget too small for RRT*, the lattice takes over and finds the corridor
+  const FlightSetup small = SnakeSetup(dir, "max_search_iterations = 500\n");
+  const PlanOutcome fallback = PlanFlight(small);
+  REQUIRE(fallback.result.status == PlanStatus::kSolved);
+  CHECK(fallback.fallback_spacing > 0);
+  CHECK(fallback.fallback_spacing <= 0.15);  // fine enough for the corridor
+  CHECK(fallback.planner.find("lattice") == 0);
+  CHECK(testing::DenselyFree(small.map, small.PlannerCollision(), fallback.result.path));
+
+  // without the fallback the same budget ends in "no path"
+  const PlanOutcome none =
+      PlanFlight(SnakeSetup(dir, "max_search_iterations = 500\nlattice_fallback = false\n"));
+  CHECK(none.result.status == PlanStatus::kNoPathWithinBudget);
+}
+
+TEST_CASE("planners by name: given waypoints are checked, and a user's planner is chosen") {
+  const testing::TempDir dir;
+  // the corridor's turns as waypoints
+  std::string points = "kind = \"waypoints\"\nwaypoints = [";
+  for (int i = 0; i < 7; ++i) {
+    const double x = i % 2 == 0 ? 5.78 : 0.22;
+    const double y0 = 0.225 + 0.55 * i;
+    points += "[" + FormatNumber(x) + ", " + FormatNumber(y0) + ", 0.5], [" + FormatNumber(x) +
+              ", " + FormatNumber(y0 + 0.55) + ", 0.5]" + (i < 6 ? ", " : "");
+  }
+  points += "]\n";
+  const FlightSetup given = SnakeSetup(dir, points);
+  const PlanOutcome followed = PlanFlight(given);
+  CAPTURE(points);
+  REQUIRE(followed.result.status == PlanStatus::kSolved);
+  CHECK(followed.planner == "waypoints");
+  CHECK(followed.result.path.size() == 16);
+  CHECK(followed.result.path[1].isApprox(given.planning.waypoints[0]));
+
+  // one waypoint inside a wall: the given path is refused with the point named
+  const PlanOutcome blocked =
+      PlanFlight(SnakeSetup(dir, "kind = \"waypoints\"\nwaypoints = [[3, 0.5, 0.5]]\n"));
+  CHECK(blocked.result.status == PlanStatus::kPathBlocked);
+  CHECK(blocked.result.stats.blocked_leg == 1);
+
+  if (Planners().Find("straight") == nullptr) {
+    Planners().Register("straight", [](const PlannerConfig&, const PlannerContext& context) {
+      return std::make_unique<StraightPlanner>(context);
+    });
+  }
+  const std::string room = dir.Write("room.txt", "boundary 0 0 0 4 4 2\n");
+  const std::string scenario = dir.Write("room.toml",
+                                         "map = \"room.txt\"\nstart = [1, 1, 1]\ngoal = [3, 3, 1]\n"
+                                         "[planner]\nkind = \"straight\"\n");
+  const PlanOutcome straight = PlanFlight(LoadFlightSetup(scenario, {}));
+  REQUIRE(straight.result.status == PlanStatus::kSolved);
+  CHECK(straight.planner == "straight");
+  CHECK(straight.result.path.size() == 2);
 }
 
 }  // namespace aerobox

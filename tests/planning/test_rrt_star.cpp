@@ -48,7 +48,9 @@ TEST_CASE("RRT* finds a collision-free path through the window") {
   CHECK(result.stats.final_cost == doctest::Approx(PathLength(result.path)));
   CHECK(result.stats.time_to_first_solution >= 0);
   CHECK(result.stats.nodes > 10);
-  CHECK(result.stats.iterations == 3000);
+  // the iteration budget counts from the first solution: the search for it is never cut short
+  REQUIRE(result.stats.iterations_to_first_solution >= 0);
+  CHECK(result.stats.iterations - result.stats.iterations_to_first_solution == 3000);
 }
 
 TEST_CASE("the same seed gives the same path, another seed another") {
@@ -144,6 +146,27 @@ TEST_CASE("a goal in plain sight is reached in a single straight segment") {
   CHECK(result.path.size() == 2);
   CHECK(result.stats.time_to_first_solution >= 0);
   CHECK(result.stats.first_cost == doctest::Approx((Vec3(4, 4, 2) - Vec3(1, 1, 1)).norm()));
+}
+
+}  // namespace aerobox
+
+namespace aerobox {
+
+TEST_CASE("without a solution RRT* stops at its search budget, deterministically") {
+  // a wall closes the room: no path
+  Map map;
+  map.bounds = {Vec3(0, 0, 0), Vec3(4, 4, 2)};
+  map.boxes.push_back({{Vec3(0, 1.9, 0), Vec3(4, 2.1, 2)}, Vec3(1, 0, 0), "wall", 1});
+  const CollisionWorld world(map, CollisionParams());
+  RrtStarParams params;
+  params.max_iterations = 10;
+  params.max_search_iterations = 1500;
+  params.time_budget = 60;
+  const PlanResult result = PlanRrtStar(Vec3(2, 1, 1), Vec3(2, 3, 1), world.free_bounds(),
+                                        testing::ValidityOf(world), params);
+  CHECK(result.status == PlanStatus::kNoPathWithinBudget);
+  CHECK(result.stats.iterations == 1500);
+  CHECK(result.stats.iterations_to_first_solution == -1);
 }
 
 }  // namespace aerobox

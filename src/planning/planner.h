@@ -1,0 +1,53 @@
+// The planner seam: a planner sees the world only through its validity functions and the
+// sampling bounds, and answers a start-goal query with a status and a path. The built-ins
+// (rrt_star, lattice, waypoints) are ordinary implementations, registered by name; a user's
+// planner is one more.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/registry.h"
+#include "planning/lattice_planner.h"
+#include "planning/rrt_star.h"
+#include "planning/validity.h"
+
+namespace aerobox {
+
+class Planner {
+ public:
+  virtual ~Planner() = default;
+  // A collision-free path from start to goal [m], or a status saying why there is none. Never
+  // throws for a problem without a solution.
+  virtual PlanResult Plan(const Vec3& start, const Vec3& goal) = 0;
+};
+
+// What a planner is made from.
+struct PlannerContext {
+  Aabb bounds;        // where the vehicle's centre may be [m]
+  Validity validity;  // what is free
+  std::uint64_t seed = 1;
+};
+
+// What a scenario's [planner] table sets, for every built-in (each reads its own part).
+struct PlannerConfig {
+  std::string kind = "rrt_star";  // a name in Planners()
+  RrtStarParams rrt;
+  LatticeParams lattice;
+  // kind "waypoints": the path goes start, these, goal [m], each leg checked
+  std::vector<Vec3> waypoints;
+};
+
+using PlannerFactory =
+    std::function<std::unique_ptr<Planner>(const PlannerConfig&, const PlannerContext&)>;
+
+// The registry, with "rrt_star", "lattice" and "waypoints" in it.
+Registry<PlannerFactory>& Planners();
+
+// The planner `config.kind` names; throws std::invalid_argument for an unknown kind.
+std::unique_ptr<Planner> MakePlanner(const PlannerConfig& config, const PlannerContext& context);
+
+}  // namespace aerobox
