@@ -291,8 +291,8 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
                 "draw the RRT* tree: growing in the video's first 3 s, whole in overview.png");
   std::string trajectory_method;
   fly->add_option("--trajectory", trajectory_method,
-                  "minsnap (default), or a baseline on its waypoints and times: quintic, cubic, "
-                  "septic-full");
+                  "minsnap (default), a baseline on its waypoints and times: quintic, cubic, "
+                  "septic-full; or given (the scenario's [trajectory] file)");
   fly->add_option("--frames-every", fly_options.frames_every,
                   "also write frames/frame_NNNNNN.png every this many seconds of flight");
 
@@ -342,12 +342,13 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     if (seed_given) overrides.seed = seed;
     FlightSetup setup = LoadFlightSetup(input, overrides);
     if (!trajectory_method.empty()) {
-      const std::optional<TrajectoryMethod> method = ParseTrajectoryMethod(trajectory_method);
-      if (!method) {
+      if (TrajectoryGenerators().Find(trajectory_method) == nullptr ||
+          (trajectory_method == "given" && setup.planning.given_trajectory.empty())) {
         throw InputError({"command line", 0}, "--trajectory",
-                         "expected minsnap, quintic, cubic or septic-full");
+                         "expected " + TrajectoryGenerators().NameList() +
+                             " (given needs a [trajectory] file in the scenario)");
       }
-      setup.planning.trajectory_method = *method;
+      setup.planning.trajectory_method = trajectory_method;
     }
     if (scene->parsed()) return RunScene(setup, output, out);
     if (plan->parsed()) return RunPlan(setup, out_dir, out);

@@ -8,6 +8,7 @@
 #include "common/error.h"
 #include "common/fault_injection.h"
 #include "common/number_format.h"
+#include "planning/path_simplify.h"
 #include "planning/planner.h"
 #include "telemetry/csv_table.h"
 
@@ -123,6 +124,19 @@ LatticeParams FallbackLattice(const Aabb& free_bounds) {
 
 PlanOutcome PlanFlight(const FlightSetup& setup) {
   const PlanningSettings& settings = setup.planning;
+  if (settings.trajectory_method == "given") {
+    // a trajectory from elsewhere: nothing to plan; it starts and ends where it does
+    PlanOutcome outcome;
+    outcome.planner = "none (a given trajectory)";
+    for (const TrajectorySample& s : settings.given_trajectory)
+      outcome.result.path.push_back(s.p_W);
+    outcome.result.status = PlanStatus::kSolved;
+    outcome.start.requested = outcome.start.used = outcome.result.path.front();
+    outcome.goal.requested = outcome.goal.used = outcome.result.path.back();
+    outcome.result.stats.final_cost = PathLength(outcome.result.path);
+    outcome.trajectory = TrajectoryAlong(setup, outcome.result.path);
+    return outcome;
+  }
   if (!setup.goal) throw InputError({setup.map.source, 0}, "goal", "no goal given");
   const CollisionWorld world(setup.map, setup.PlannerCollision());
   PlanOutcome outcome;
@@ -182,26 +196,12 @@ TrajectoryResult TrajectoryAlong(const FlightSetup& setup, const std::vector<Vec
       [&trajectory_world](const Vec3& a, const Vec3& b) {
         return trajectory_world.IsSegmentFree(a, b);
       }};
-  TrajectoryParams params = settings.trajectory;
-  params.ipopt.injected_failure = InjectedFault("ipopt").has_value();  // fault tests only
-  TrajectoryResult result = GenerateTrajectory(path, view, params);
-  if (settings.trajectory_method == TrajectoryMethod::kMinSnap ||
-      result.status != TrajectoryStatus::kSolved) {
-    return result;
-  }
-  // a baseline on the same waypoints and segment times as min-snap's: only the polynomials
-  // differ (and the baselines do not look at obstacles)
-  const auto begin = std::chrono::steady_clock::now();
-  result.trajectory = BaselineTrajectory(settings.trajectory_method, result.waypoints,
-                                         result.trajectory.SegmentDurations());
-  result.corridors.assign(result.trajectory.segments().size(), std::nullopt);
-  result.stats.solve_time =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-  result.stats.max_speed = result.trajectory.MaxNorm(kVelocity, settings.trajectory.check_step);
-  result.stats.max_accel = result.trajectory.MaxNorm(kAcceleration, settings.trajectory.check_step);
-  result.stats.snap_cost = result.trajectory.SnapCost();
-  result.stats.solver_message = ToString(settings.trajectory_method);
-  return result;
+  GeneratorConfig config;
+  config.method = settings.trajectory_method;
+  config.params = settings.trajectory;
+  config.params.ipopt.injected_failure = InjectedFault("ipopt").has_value();  // fault tests only
+  config.given = settings.given_trajectory;
+  return MakeGenerator(config)->Generate(path, view);
 }
 
 std::string TrajectoryCsv(const PiecewiseTrajectory& trajectory, double rate) {

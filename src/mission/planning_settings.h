@@ -8,6 +8,7 @@
 #include "planning/lattice_planner.h"
 #include "planning/rrt_star.h"
 #include "trajectory/baselines.h"
+#include "trajectory/generators.h"
 #include "trajectory/trajectory_generator.h"
 
 namespace aerobox {
@@ -35,8 +36,10 @@ struct PlanningSettings {
   bool lattice_fallback = true;
   LatticeParams lattice;  // altitudes relative to the map's floor: see PlanFlight
   TrajectoryParams trajectory;
-  // minsnap (ours), or a baseline on min-snap's waypoints and times (trajectory/baselines.h)
-  TrajectoryMethod trajectory_method = TrajectoryMethod::kMinSnap;
+  // a name in TrajectoryGenerators(): minsnap (ours), a baseline on min-snap's waypoints and
+  // times (trajectory/baselines.h), or "given" with the samples below
+  std::string trajectory_method = "minsnap";
+  std::vector<TrajectorySample> given_trajectory;  // [trajectory] file, for method "given"
   // What the trajectory keeps from obstacles [m]: half the planner's, so that the corridors
   // around the planner's path have room to bend in.
   double trajectory_clearance = 0.05;

@@ -1,5 +1,7 @@
 #include "mission/setup.h"
 
+#include <stdexcept>
+
 #include "scene/scene_mjcf.h"
 #include "vehicle/quad_params.h"
 
@@ -22,6 +24,13 @@ void FlightSetup::Validate() const {
   planning.rrt.Validate();
   planning.lattice.Validate();
   planning.trajectory.Validate();
+  if (TrajectoryGenerators().Find(planning.trajectory_method) == nullptr) {
+    throw std::invalid_argument("unknown trajectory generator '" + planning.trajectory_method +
+                                "'");
+  }
+  if (planning.trajectory_method == "given" && planning.given_trajectory.size() < 2) {
+    throw std::invalid_argument("trajectory method \"given\" needs a [trajectory] file");
+  }
 }
 
 std::string SceneMjcfFor(const FlightSetup& setup, const std::vector<bool>& keep_boxes) {

@@ -130,17 +130,28 @@ void ReadTrajectory(const toml::table& table, const std::string& file, PlanningS
       params.max_refinements = static_cast<int>(Number(node, file, field, 0, 100));
     } else if (name == "method") {
       const std::optional<std::string> text = node.value<std::string>();
-      const std::optional<TrajectoryMethod> method =
-          text ? ParseTrajectoryMethod(*text) : std::nullopt;
-      if (!method) {
+      if (!text || TrajectoryGenerators().Find(*text) == nullptr) {
         throw InputError({file, LineOf(node)}, field,
-                         "expected \"minsnap\", \"quintic\", \"cubic\" or \"septic-full\"");
+                         "expected " + TrajectoryGenerators().NameList());
       }
-      settings->trajectory_method = *method;
+      settings->trajectory_method = *text;
+    } else if (name == "file") {
+      const std::optional<std::string> value = node.value<std::string>();
+      if (!value || value->empty())
+        throw InputError({file, LineOf(node)}, field, "expected a file name");
+      const std::string path = (fs::path(file).parent_path() / *value).lexically_normal().string();
+      std::string text;
+      try {
+        text = ReadTextFile(path);
+      } catch (const InputError& e) {
+        throw InputError({file, LineOf(node)}, field, e.what());
+      }
+      std::istringstream in(text);
+      settings->given_trajectory = ReadTrajectoryCsv(in, path);
     } else {
       throw InputError({file, LineOf(node)}, field,
                        "unknown key (expected max_speed, max_accel, clearance, corridors, "
-                       "corridor_growth, samples_per_segment, max_refinements or method)");
+                       "corridor_growth, samples_per_segment, max_refinements, method or file)");
     }
   }
 }
@@ -423,6 +434,52 @@ std::optional<Vec3> FirstGiven(std::initializer_list<Candidate> candidates, std:
 
 }  // namespace
 
+// A trajectory as aerobox's trajectory.csv writes it: a header t,x,y,z,vx,vy,vz,ax,ay,az, then
+// one sample per row [s, m, m/s, m/s^2].
+std::vector<TrajectorySample> ReadTrajectoryCsv(std::istream& in, const std::string& file) {
+  static const char* const kHeader = "t,x,y,z,vx,vy,vz,ax,ay,az";
+  std::string line;
+  int number = 0;
+  std::vector<TrajectorySample> samples;
+  while (std::getline(in, line)) {
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (number == 1) {
+      if (line != kHeader) {
+        throw InputError({file, 1}, "header", std::string("expected ") + kHeader);
+      }
+      continue;
+    }
+    if (line.empty()) continue;
+    std::istringstream fields(line);
+    std::string field;
+    double values[10];
+    int count = 0;
+    while (std::getline(fields, field, ',')) {
+      if (count >= 10 || !ParseNumber(field, &values[count]) || !std::isfinite(values[count])) {
+        throw InputError({file, number}, "sample",
+                         "expected 10 finite numbers t,x,y,z,vx,vy,vz,ax,ay,az");
+      }
+      ++count;
+    }
+    if (count != 10) {
+      throw InputError({file, number}, "sample",
+                       "expected 10 finite numbers t,x,y,z,vx,vy,vz,ax,ay,az");
+    }
+    TrajectorySample s;
+    s.t = values[0];
+    s.p_W = Vec3(values[1], values[2], values[3]);
+    s.v_W = Vec3(values[4], values[5], values[6]);
+    s.a_W = Vec3(values[7], values[8], values[9]);
+    if (!samples.empty() && !(s.t > samples.back().t)) {
+      throw InputError({file, number}, "t", "times must increase");
+    }
+    samples.push_back(s);
+  }
+  if (samples.size() < 2) throw InputError({file, number}, "", "expected at least 2 samples");
+  return samples;
+}
+
 Scenario ReadScenario(std::istream& in, const std::string& file) {
   std::ostringstream buffer;
   buffer << in.rdbuf();
@@ -549,14 +606,13 @@ FlightSetup LoadFlightSetup(const std::string& path, const SetupOverrides& overr
   const SourceLocation command_line{"command line", 0};
   const SourceLocation in_map{map_path, setup.map.start_goal_line};
   const SourceLocation in_side_file{side_path.string(), 0};
-  const std::optional<Vec3> start =
-      FirstGiven({{overrides.start, "command line", command_line},
-                  {scenario ? scenario->start : std::nullopt,
-                   "scenario",
-                   {path, scenario ? scenario->start_line : 0}},
-                  {setup.map.start, "map file", in_map},
-                  {from_side_file(true), "start/goal file", in_side_file}},
-                 &setup.start_origin, &setup.start_where);
+  std::optional<Vec3> start = FirstGiven({{overrides.start, "command line", command_line},
+                                          {scenario ? scenario->start : std::nullopt,
+                                           "scenario",
+                                           {path, scenario ? scenario->start_line : 0}},
+                                          {setup.map.start, "map file", in_map},
+                                          {from_side_file(true), "start/goal file", in_side_file}},
+                                         &setup.start_origin, &setup.start_where);
   setup.goal = FirstGiven({{overrides.goal, "command line", command_line},
                            {scenario ? scenario->goal : std::nullopt,
                             "scenario",
@@ -564,6 +620,16 @@ FlightSetup LoadFlightSetup(const std::string& path, const SetupOverrides& overr
                            {setup.map.goal, "map file", in_map},
                            {from_side_file(false), "start/goal file", in_side_file}},
                           &setup.goal_origin, &setup.goal_where);
+  if (setup.planning.trajectory_method == "given" && !setup.planning.given_trajectory.empty()) {
+    // a given trajectory starts and ends where it does
+    const SourceLocation in_trajectory{path, 0};
+    start = setup.planning.given_trajectory.front().p_W;
+    setup.start_origin = "trajectory file";
+    setup.start_where = in_trajectory;
+    setup.goal = setup.planning.given_trajectory.back().p_W;
+    setup.goal_origin = "trajectory file";
+    setup.goal_where = in_trajectory;
+  }
   if (start) {
     setup.start = *start;
   } else {

@@ -47,6 +47,10 @@ struct Scenario {
   FlightParams flight;                 // [flight]
 };
 
+// A trajectory in the form aerobox's trajectory.csv has (header t,x,y,z,vx,vy,vz,ax,ay,az, one
+// sample per row [s, m, m/s, m/s^2]); throws InputError naming the file and line.
+std::vector<TrajectorySample> ReadTrajectoryCsv(std::istream& in, const std::string& file);
+
 // Parses scenario text; throws InputError naming the file, line and key at fault.
 Scenario ReadScenario(std::istream& in, const std::string& file);
 

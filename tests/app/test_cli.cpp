@@ -169,6 +169,52 @@ TEST_CASE("fly checks every option before any work: nothing is planned or writte
   CHECK(odd.code == kExitReachedGoal);
 }
 
+TEST_CASE("fly a given trajectory: aerobox's own trajectory.csv flown as it is") {
+  const TempDir dir;
+  const std::string room = dir.Write("room.txt", "boundary 0 0 0 6 6 2\nblock 2.5 0 0 3 4.5 2\n");
+  const std::string planned = (dir.path() / "planned").string();
+  REQUIRE(Aerobox({"plan", room, "--start", "1,1,1", "--goal", "5,1,1", "--out", planned}).code ==
+          kExitReachedGoal);
+  fs::copy_file(fs::path(planned) / "trajectory.csv", dir.path() / "mine.csv");
+  const std::string scenario = dir.Write(
+      "given.toml", "map = \"room.txt\"\n[trajectory]\nmethod = \"given\"\nfile = \"mine.csv\"\n");
+  const std::string out = (dir.path() / "out").string();
+  const Run run = Aerobox({"fly", scenario, "--no-video", "--quiet", "--out", out});
+  CAPTURE(run.out);
+  CAPTURE(run.err);
+  REQUIRE(run.code == kExitReachedGoal);
+  // the setpoints are the file's samples (100 Hz in the file, 250 Hz in the telemetry: every
+  // 0.04 s both have one)
+  std::istringstream file(testing::ReadFile(dir.path() / "mine.csv"));
+  std::istringstream telemetry(testing::ReadFile(fs::path(out) / "telemetry.csv"));
+  std::string a, b;
+  std::getline(file, a);
+  std::getline(telemetry, b);
+  int compared = 0;
+  for (int row = 0; std::getline(file, a); ++row) {
+    if (row % 4 != 0) continue;
+    std::string t_row;
+    for (int skip = 0; skip < (row == 0 ? 1 : 10) && std::getline(telemetry, t_row); ++skip) {
+    }
+    std::vector<double> x, y;
+    std::istringstream fa(a), fb(t_row);
+    for (std::string cell; std::getline(fa, cell, ',');) x.push_back(std::stod(cell));
+    for (std::string cell; std::getline(fb, cell, ',');) y.push_back(std::stod(cell));
+    REQUIRE(y.size() > 17);
+    CHECK(y[0] == doctest::Approx(x[0]).epsilon(1e-9));
+    for (int k = 0; k < 3; ++k) CHECK(y[14 + k] == doctest::Approx(x[1 + k]).epsilon(1e-9));
+    ++compared;
+  }
+  CHECK(compared > 20);
+  // a file that is not a trajectory names its line
+  dir.Write("bad.csv", "t,x,y,z,vx,vy,vz,ax,ay,az\n0,1,1,1,0,0,0,0,0,0\n0.1,1,1\n");
+  const std::string bad = dir.Write(
+      "bad.toml", "map = \"room.txt\"\n[trajectory]\nmethod = \"given\"\nfile = \"bad.csv\"\n");
+  const Run refused = Aerobox({"fly", bad, "--no-video", "--quiet", "--out", out + "2"});
+  CHECK(refused.code == kExitBadInput);
+  CHECK(refused.err.find("bad.csv:3: sample:") != std::string::npos);
+}
+
 TEST_CASE("model writes the vehicle's MJCF") {
   const Run run = Aerobox({"model"});
   CHECK(run.code == kExitReachedGoal);
@@ -264,7 +310,7 @@ TEST_CASE("fly --show-tree: 3 s of the tree growing open the video, and --trajec
   CHECK(frames({"--show-tree"}, "tree") == frames({}, "plain") + 90);  // 3 s at 30 fps
   const Run bad = Aerobox({"fly", scenario, "--no-video", "--trajectory", "septic"});
   CHECK(bad.code == kExitBadInput);
-  CHECK(bad.err.find("--trajectory: expected minsnap, quintic, cubic or septic-full") !=
+  CHECK(bad.err.find("--trajectory: expected cubic, given, minsnap, quintic or septic-full") !=
         std::string::npos);
 }
 

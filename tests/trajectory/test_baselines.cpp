@@ -143,3 +143,49 @@ TEST_CASE("method names") {
 }
 
 }  // namespace aerobox
+
+#include "trajectory/generators.h"
+
+namespace aerobox {
+
+TEST_CASE("a sampled trajectory meets every sample's position, velocity and acceleration") {
+  // samples of a known curve, unevenly spaced
+  const auto p = [](double t) { return Vec3(std::sin(t), t * t, 0.5 * t); };
+  const auto v = [](double t) { return Vec3(std::cos(t), 2 * t, 0.5); };
+  const auto a = [](double t) { return Vec3(-std::sin(t), 2.0, 0.0); };
+  std::vector<TrajectorySample> samples;
+  for (const double t : {0.0, 0.3, 0.35, 1.0, 1.7}) samples.push_back({t, p(t), v(t), a(t)});
+  const PiecewiseTrajectory trajectory = SampledTrajectory(samples);
+  REQUIRE(trajectory.segments().size() == 4);
+  CHECK(trajectory.duration() == doctest::Approx(1.7));
+  for (const TrajectorySample& s : samples) {
+    CAPTURE(s.t);
+    // at the knots, from either side (1e-9: rounding of the normalised-time polynomials)
+    for (const double t : {s.t - 1e-12, s.t + 1e-12}) {
+      if (t < 0 || t > 1.7) continue;
+      CHECK((trajectory.Evaluate3(t, kPosition) - s.p_W).norm() < 1e-9);
+      CHECK((trajectory.Evaluate3(t, kVelocity) - s.v_W).norm() < 1e-8);
+      CHECK((trajectory.Evaluate3(t, kAcceleration) - s.a_W).norm() < 1e-7);
+    }
+  }
+  // between the samples the curve stays near the one sampled (quintic interpolation error)
+  CHECK((trajectory.Evaluate3(0.65, kPosition) - p(0.65)).norm() < 1e-3);
+  CHECK_THROWS_AS(SampledTrajectory({samples[0]}), std::invalid_argument);
+  std::vector<TrajectorySample> backwards = samples;
+  backwards[2].t = 0.2;
+  CHECK_THROWS_WITH_AS(SampledTrajectory(backwards), doctest::Contains("times must increase"),
+                       std::invalid_argument);
+}
+
+TEST_CASE("trajectory generators by name") {
+  for (const char* name : {"minsnap", "quintic", "cubic", "septic-full", "given"}) {
+    CAPTURE(name);
+    CHECK(TrajectoryGenerators().Find(name) != nullptr);
+  }
+  GeneratorConfig config;
+  config.method = "nosuch";
+  CHECK_THROWS_WITH_AS(MakeGenerator(config), doctest::Contains("unknown trajectory generator"),
+                       std::invalid_argument);
+}
+
+}  // namespace aerobox
