@@ -2,6 +2,7 @@
 
 #include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <cerrno>
@@ -14,6 +15,7 @@
 #include "app/exit_codes.h"
 #include "app/files.h"
 #include "app/fly_job.h"
+#include "app/interrupt.h"
 #include "common/error.h"
 #include "common/number_format.h"
 #include "mission/plan.h"
@@ -210,9 +212,20 @@ int RunBenchBinary(const std::vector<std::string>& args, std::ostream& err) {
     err << "aerobox: error: bench: cannot run " << binary.string() << "\n";
     return kExitUnexpected;
   }
+  // Ctrl-C reaches the child too from a terminal; a SIGINT sent to this process alone is
+  // passed on, so that the benchmark never outlives the command
   int status = 0;
-  while (waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  bool forwarded = false;
+  while (true) {
+    const pid_t done = waitpid(child, &status, WNOHANG);
+    if (done == child || (done < 0 && errno != EINTR)) break;
+    if (StopRequested() && !forwarded) {
+      kill(child, SIGINT);
+      forwarded = true;
+    }
+    usleep(20000);
   }
+  if (forwarded) return kExitInterrupted;
   if (WIFEXITED(status)) return WEXITSTATUS(status);
   return WIFSIGNALED(status) && WTERMSIG(status) == SIGINT ? kExitInterrupted : kExitUnexpected;
 }

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "app/interrupt.h"
 #include "common/error.h"
 #include "common/fault_injection.h"
 
@@ -29,6 +30,11 @@ void WriteFileAtomically(const std::string& path, const std::string& text) {
   const fs::path target(path);
   fs::path temporary = target;
   temporary += ".partial";
+  RegisterPartialFile(temporary.string());
+  struct Unregister {
+    std::string path;
+    ~Unregister() { UnregisterPartialFile(path); }
+  } unregister{temporary.string()};
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) {
@@ -53,8 +59,10 @@ void WriteFileAtomically(const std::string& path, const std::string& text) {
 
 StreamingFile::StreamingFile(std::string path)
     : path_(std::move(path)), partial_(path_ + ".partial") {
+  RegisterPartialFile(partial_);
   file_ = std::fopen(partial_.c_str(), "wb");
   if (file_ == nullptr) {
+    UnregisterPartialFile(partial_);
     throw InputError({path_, 0}, "", std::string("cannot write: ") + std::strerror(errno));
   }
 }
@@ -64,6 +72,7 @@ StreamingFile::~StreamingFile() {
     std::fclose(file_);
     std::remove(partial_.c_str());
   }
+  UnregisterPartialFile(partial_);
 }
 
 void StreamingFile::Append(const std::string& text) {

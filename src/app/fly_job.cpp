@@ -13,6 +13,7 @@
 #include "app/exit_codes.h"
 #include "app/files.h"
 #include "app/fly_outputs.h"
+#include "app/interrupt.h"
 #include "common/number_format.h"
 #include "mission/mission.h"
 #include "mission/telemetry_table.h"
@@ -27,8 +28,6 @@ namespace aerobox {
 namespace fs = std::filesystem;
 namespace {
 
-std::atomic<bool> stop_requested{false};
-
 CameraSpec ParseCamera(const std::string& name) {
   if (name == "overview") return {CameraKind::kOverview, ""};
   if (name == "top") return {CameraKind::kTop, ""};
@@ -36,8 +35,6 @@ CameraSpec ParseCamera(const std::string& name) {
 }
 
 }  // namespace
-
-void RequestStop() { stop_requested = true; }
 
 void ValidateFlyOptions(const FlyOptions& options) {
   const SourceLocation command_line{"command line", 0};
@@ -96,9 +93,16 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
   render.show_tree = options.show_tree;
 
   // the outputs, each an observer of the run
-  StopOnRequest stop(&stop_requested);
+  StopOnRequest stop(&StopRequested());
   CsvOutputs csv(folder);
   RenderOutputs pictures(folder, setup, render, err);
+  // the watchdog removes the video's temporary file if it has to end the process
+  const std::string video_partial = (fs::path(folder) / "video.mp4.partial").string();
+  if (options.video) RegisterPartialFile(video_partial);
+  struct Unregister {
+    std::string path;
+    ~Unregister() { UnregisterPartialFile(path); }
+  } unregister{video_partial};
   std::optional<ProgressLine> progress;
   MissionParts parts;
   parts.observers = {&stop, &csv, &pictures};

@@ -23,10 +23,6 @@ struct FlyOptions {
                                  // whole in overview.png
 };
 
-// Set from a SIGINT handler: the run stops at the next control step, and every output is then
-// complete or absent.
-void RequestStop();
-
 // Throws InputError naming the option when a value cannot be used: the command checks every
 // option before it reads a file or does any work.
 void ValidateFlyOptions(const FlyOptions& options);

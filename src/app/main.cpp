@@ -1,11 +1,11 @@
-#include <csignal>
 #include <iostream>
 
 #include "app/cli.h"
-#include "app/fly_job.h"
+#include "app/interrupt.h"
 
 int main(int argc, char** argv) {
-  // Ctrl-C: stop at the next control step and leave only complete files
-  std::signal(SIGINT, [](int) { aerobox::RequestStop(); });
+  // Ctrl-C: the flight stops at its next control step, anything else within a second; only
+  // complete files are left (app/interrupt.h)
+  aerobox::InstallInterruptHandler();
   return aerobox::RunCli(argc, argv, std::cout, std::cerr);
 }
