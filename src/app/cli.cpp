@@ -94,12 +94,52 @@ int RunCheck(const FlightSetup& setup, std::ostream& out) {
   row("bounds") << Describe(map.bounds) << " m (" << FormatVector(map.bounds.Size(), " x ")
                 << " m)\n";
   row("boxes") << map.boxes.size() << "\n";
-  row("start") << FormatVector(setup.start, ", ") << " (" << setup.start_origin << ")\n";
+  if (setup.start_origin == kNoStart) {
+    row("start") << "none: no start given and no free spot on the floor or a block\n";
+  } else {
+    row("start") << FormatVector(setup.start, ", ") << " (" << setup.start_origin << ")\n";
+  }
   if (setup.goal) {
     row("goal") << FormatVector(*setup.goal, ", ") << " (" << setup.goal_origin << ")\n";
   } else {
     row("goal") << "none given\n";
   }
+  // the settings in force, after the scenario's tables
+  const QuadParams& v = setup.vehicle;
+  row("vehicle")
+      << setup.vehicle_kind << ": " << FormatNumber(v.mass) << " kg, inertia "
+      << FormatVector(v.inertia) << " kg m^2, rotors " << FormatNumber(v.MinRotorThrust()) << " .. "
+      << FormatNumber(v.MaxRotorThrust()) << " N (thrust/weight "
+      << FormatNumber(std::round(100 * kNumRotors * v.MaxRotorThrust() / (v.mass * kGravity)) / 100)
+      << "), yaw " << FormatNumber(v.yaw_moment_per_thrust) << " N m/N, motor lag "
+      << FormatNumber(v.motor_time_constant) << " s, box " << FormatVector(v.collision_size, " x ")
+      << " m\n";
+  const ControllerConfig& c = setup.controller;
+  row("control") << c.kind << " at " << FormatNumber(c.rate) << " Hz: ";
+  if (c.kind == "cascade") {
+    out << "position " << FormatVector(c.cascade.position_gain) << " 1/s, velocity "
+        << FormatVector(c.cascade.velocity_gain) << " 1/s (I "
+        << FormatVector(c.cascade.velocity_integral)
+        << " 1/s^2), tilt <= " << FormatNumber(c.cascade.max_tilt) << " rad; ";
+  } else if (c.kind == "se3") {
+    out << "position " << FormatVector(c.se3.position_gain) << " 1/s^2, velocity "
+        << FormatVector(c.se3.velocity_gain) << " 1/s, attitude "
+        << FormatVector(c.se3.attitude_gain) << " 1/s^2, rates " << FormatVector(c.se3.rate_gain)
+        << " 1/s; ";
+  }
+  out << "inner loops: attitude " << FormatVector(c.inner.attitude.gain) << " 1/s, rates "
+      << FormatVector(c.inner.rate.gain) << " 1/s\n";
+  const FlightParams& f = setup.flight;
+  row("flight") << "goal within " << FormatNumber(f.goal_tolerance) << " m below "
+                << FormatNumber(f.goal_speed) << " m/s, " << FormatNumber(f.settle_time)
+                << " s after the trajectory; fly-away at " << FormatNumber(f.flyaway_distance)
+                << " m; yaw " << (f.face_travel ? "along the travel" : "held") << "\n";
+  const PlanningSettings& p = setup.planning;
+  row("planner") << PlannerKindFor(setup) << ", clearance " << FormatNumber(p.clearance)
+                 << " m; trajectory " << p.trajectory_method << ", "
+                 << FormatNumber(p.trajectory.max_speed) << " m/s, "
+                 << FormatNumber(p.trajectory.max_accel) << " m/s^2, clearance "
+                 << FormatNumber(p.trajectory_clearance) << " m\n";
   const std::vector<size_t> outside = BoxesOutsideBounds(map);
   row("outside") << outside.size() << (outside.size() == 1 ? " box reaches" : " boxes reach")
                  << " outside the bounds (kept)\n";
@@ -108,7 +148,9 @@ int RunCheck(const FlightSetup& setup, std::ostream& out) {
         << "): " << Describe(map.boxes[i].extent) << "\n";
   }
 
-  CheckEndpoint(setup, setup.start, "start", setup.start_origin);
+  if (setup.start_origin != kNoStart) {
+    CheckEndpoint(setup, setup.start, "start", setup.start_origin);
+  }
   if (setup.goal) CheckEndpoint(setup, *setup.goal, "goal", setup.goal_origin);
 
   const Simulation sim = Simulation::FromXml(SceneMjcfFor(setup), map.source + " (scene)");

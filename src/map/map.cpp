@@ -1,5 +1,6 @@
 #include "map/map.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -77,13 +78,38 @@ std::optional<Vec3> DefaultStart(const Map& map, double clearance, double half_h
   const Vec3 size = map.bounds.Size();
   const int nx = static_cast<int>(std::floor(size.x() / kGridStep));
   const int ny = static_cast<int>(std::floor(size.y() / kGridStep));
-  for (int j = 1; j < ny; ++j) {
-    for (int i = 1; i < nx; ++i) {
-      const Vec3 p(map.bounds.min.x() + i * kGridStep, map.bounds.min.y() + j * kGridStep,
-                   map.bounds.min.z() + half_height);
-      const Aabb around{p.array() - clearance, p.array() + clearance};
-      const Aabb clipped_floor{around.min + Vec3(0, 0, clearance - half_height), around.max};
-      if (clipped_floor.IsInside(map.bounds) && !FirstOverlappingBox(map, around)) return p;
+  // a spot resting on the surface at height `ground`: the cube around the vehicle, cut at the
+  // surface, inside the bounds and clear of every box
+  const auto free_on = [&](double x, double y, double ground) -> std::optional<Vec3> {
+    const Vec3 p(x, y, ground + half_height);
+    const Aabb around{p.array() - clearance, p.array() + clearance};
+    const Aabb above{Vec3(around.min.x(), around.min.y(), ground), around.max};
+    if (!above.IsInside(map.bounds) || FirstOverlappingBox(map, above)) return std::nullopt;
+    return p;
+  };
+  // the floor first, scanned from the (xmin, ymin) corner; then, where blocks cover the floor
+  // (some course maps model floor and ceiling as slabs), the tops of the blocks, lowest first
+  for (const bool on_blocks : {false, true}) {
+    for (int j = 1; j < ny; ++j) {
+      for (int i = 1; i < nx; ++i) {
+        const double x = map.bounds.min.x() + i * kGridStep;
+        const double y = map.bounds.min.y() + j * kGridStep;
+        if (!on_blocks) {
+          if (const auto p = free_on(x, y, map.bounds.min.z())) return p;
+          continue;
+        }
+        std::vector<double> tops;
+        for (const Box& box : map.boxes) {
+          if (x >= box.extent.min.x() && x <= box.extent.max.x() && y >= box.extent.min.y() &&
+              y <= box.extent.max.y()) {
+            tops.push_back(box.extent.max.z());
+          }
+        }
+        std::sort(tops.begin(), tops.end());
+        for (const double top : tops) {
+          if (const auto p = free_on(x, y, top)) return p;
+        }
+      }
     }
   }
   return std::nullopt;

@@ -44,8 +44,9 @@ std::optional<size_t> FirstOverlappingBox(const Map& map, const Aabb& query);
 
 // Where the vehicle stands when a map gives no start: the first point of a 0.25 m grid over the
 // floor, scanned from the (xmin, ymin) corner, where a cube of side `2 * clearance` [m] around the
-// vehicle's position touches no box and stays inside the bounds. `half_height` [m] lifts the
-// vehicle's centre so that it rests on the floor. Returns nothing when no grid point is free.
+// vehicle's position touches no box and stays inside the bounds; where blocks cover the floor,
+// the same on the tops of the blocks (lowest first). `half_height` [m] lifts the vehicle's
+// centre so that it rests on what is below it. Returns nothing when no grid point is free.
 std::optional<Vec3> DefaultStart(const Map& map, double clearance, double half_height);
 
 }  // namespace aerobox

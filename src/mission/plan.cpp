@@ -138,6 +138,11 @@ PlanOutcome PlanFlight(const FlightSetup& setup) {
     return outcome;
   }
   if (!setup.goal) throw InputError({setup.map.source, 0}, "goal", "no goal given");
+  if (setup.start_origin == kNoStart) {
+    throw InputError(setup.start_where, "start",
+                     "no start given and no free spot found on the floor or on a block; give "
+                     "one with --start or in the scenario");
+  }
   const CollisionWorld world(setup.map, setup.PlannerCollision());
   PlanOutcome outcome;
   std::tie(outcome.start, outcome.goal) = ResolveEndpoints(

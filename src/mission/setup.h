@@ -17,6 +17,10 @@
 
 namespace aerobox {
 
+// FlightSetup::start_origin when neither the user nor the map gave a start and no free spot
+// was found for one: a scene can still be made; planning refuses.
+inline constexpr const char* kNoStart = "none";
+
 // A map ready to fly with everything a scenario sets: where start and goal came from is kept
 // for messages and summaries. One QuadParams feeds the scene, the collision worlds and the
 // controller.

@@ -636,12 +636,16 @@ FlightSetup LoadFlightSetup(const std::string& path, const SetupOverrides& overr
     // 0.3 m keeps the default start clear of walls by more than the vehicle's own size
     const std::optional<Vec3> fallback =
         DefaultStart(setup.map, 0.3, 0.5 * setup.vehicle.collision_size.z());
-    if (!fallback) {
-      throw InputError({path, 0}, "start", "no start given and no free spot on the floor found");
-    }
-    setup.start = *fallback;
-    setup.start_origin = "default";
     setup.start_where = {map_path, 0};
+    if (fallback) {
+      setup.start = *fallback;
+      setup.start_origin = "default";
+    } else {
+      // a scene needs no start: the vehicle waits at the top of the map; planning refuses it
+      setup.start = Vec3(setup.map.bounds.Center().x(), setup.map.bounds.Center().y(),
+                         setup.map.bounds.max.z());
+      setup.start_origin = kNoStart;
+    }
   }
   return setup;
 }

@@ -53,6 +53,21 @@ TEST_CASE("check prints a summary of a good map and exits 0") {
   CHECK(run.out.find("block_1 (line 3)") != std::string::npos);
   CHECK(run.out.find("loads in MuJoCo 2.2.2") != std::string::npos);
   CHECK(run.out.find("result    ok") != std::string::npos);
+  // the settings in force
+  CHECK(run.out.find("vehicle   tello: 0.08 kg") != std::string::npos);
+  CHECK(run.out.find("control   cascade at 250 Hz") != std::string::npos);
+
+  // a scenario's tables, resolved
+  const std::string scenario =
+      dir.Write("cf.toml",
+                "map = \"room.txt\"\nstart = [1, 1, 0]\n[vehicle]\nkind = \"crazyflie\"\n"
+                "motor_time_constant = 0.03\n[controller]\nkind = \"se3\"\nrate = 500\n");
+  const Run cf = Aerobox({"check", scenario});
+  CAPTURE(cf.out);
+  CHECK(cf.code == kExitReachedGoal);
+  CHECK(cf.out.find("vehicle   crazyflie: 0.03 kg") != std::string::npos);
+  CHECK(cf.out.find("motor lag 0.03 s") != std::string::npos);
+  CHECK(cf.out.find("control   se3 at 500 Hz") != std::string::npos);
 }
 
 TEST_CASE("bad maps and points exit 2 with file:line messages") {
@@ -78,6 +93,31 @@ TEST_CASE("bad maps and points exit 2 with file:line messages") {
   run = Aerobox({"scene", (dir.path() / "absent.json").string()});
   CHECK(run.code == kExitBadInput);
   CHECK(run.err.find("absent.json: cannot open") != std::string::npos);
+}
+
+TEST_CASE("scene and check take a map whose floor is a block, and one with no free spot") {
+  const TempDir dir;
+  const std::string slabs =
+      dir.Write("slabs.txt", "boundary 0 0 0 4 4 3\nblock 0 0 0 4 4 0.2\nblock 0 0 2.8 4 4 3\n");
+  const Run check = Aerobox({"check", slabs});
+  CAPTURE(check.err);
+  CHECK(check.code == kExitReachedGoal);
+  CHECK(check.out.find("start     ") != std::string::npos);
+  CHECK(check.out.find("0.225 (default)") != std::string::npos);  // on the floor slab
+  CHECK(Aerobox({"scene", slabs, "-o", (dir.path() / "slabs.xml").string()}).code ==
+        kExitReachedGoal);
+
+  // nowhere free: a scene still, a check that says so, and a plan that refuses
+  const std::string full = dir.Write("full.txt", "boundary 0 0 0 2 2 1\nblock 0 0 0 2 2 1\n");
+  CHECK(Aerobox({"scene", full, "-o", (dir.path() / "full.xml").string()}).code ==
+        kExitReachedGoal);
+  const Run none = Aerobox({"check", full});
+  CHECK(none.code == kExitReachedGoal);
+  CHECK(none.out.find("start     none: no start given") != std::string::npos);
+  const Run plan =
+      Aerobox({"plan", full, "--goal", "1,1,0.5", "--out", (dir.path() / "out").string()});
+  CHECK(plan.code == kExitBadInput);
+  CHECK(plan.err.find("no start given and no free spot found") != std::string::npos);
 }
 
 TEST_CASE("scene writes a complete file or nothing") {

@@ -160,3 +160,110 @@ TEST_CASE("missing or bad files are InputErrors naming them") {
 }
 
 }  // namespace aerobox
+
+#include "control/controllers.h"
+#include "mission/plan.h"
+#include "sim/simulation.h"
+
+namespace aerobox {
+namespace {
+
+// A scenario over a 4 x 4 x 2 m room with `tables` appended.
+FlightSetup RoomScenario(const TempDir& dir, const std::string& tables) {
+  dir.Write("room.txt", "boundary 0 0 0 4 4 2\n");
+  return LoadFlightSetup(
+      dir.Write("room.toml", "map = \"room.txt\"\nstart = [1, 1, 0]\ngoal = [3, 3, 1]\n" + tables),
+      {});
+}
+
+}  // namespace
+
+TEST_CASE("[vehicle] reaches the MuJoCo scene") {
+  const TempDir dir;
+  const FlightSetup setup = RoomScenario(
+      dir, "[vehicle]\nmass = 0.1\nmotor_time_constant = 0.03\nmax_rotor_thrust = 0.5\n");
+  CHECK(setup.vehicle_kind == "tello");
+  const Simulation sim = Simulation::FromXml(SceneMjcfFor(setup), "room");
+  const mjModel* m = sim.model();
+  const int body = mj_name2id(m, mjOBJ_BODY, "quad");
+  CHECK(m->body_mass[body] == doctest::Approx(0.1));
+  for (int a = 0; a < m->nu; ++a) {
+    CHECK(m->actuator_dynprm[a * mjNDYN] == doctest::Approx(0.03));
+    CHECK(m->actuator_ctrlrange[2 * a + 1] == doctest::Approx(0.5));
+  }
+  // the Crazyflie's own numbers, by kind
+  const FlightSetup cf = RoomScenario(dir, "[vehicle]\nkind = \"crazyflie\"\n");
+  const Simulation cf_sim = Simulation::FromXml(SceneMjcfFor(cf), "room");
+  CHECK(cf_sim.model()->body_mass[mj_name2id(cf_sim.model(), mjOBJ_BODY, "quad")] ==
+        doctest::Approx(0.030));
+}
+
+TEST_CASE("[vehicle] reaches the collision worlds and so the planner") {
+  const TempDir dir;
+  const FlightSetup big = RoomScenario(dir, "[vehicle]\ncollision_size = [0.2, 0.2, 0.1]\n");
+  CHECK(big.PlannerCollision().vehicle_size.isApprox(Vec3(0.2, 0.2, 0.1)));
+  CHECK(big.TrajectoryCollision().vehicle_size.isApprox(Vec3(0.2, 0.2, 0.1)));
+  // a start on the floor moves up by half the vehicle's height plus the clearance
+  const PlanOutcome plan = PlanFlight(big);
+  CHECK(plan.start.moved == doctest::Approx(0.05 + 0.10));
+  const PlanOutcome tello = PlanFlight(RoomScenario(dir, ""));
+  CHECK(tello.start.moved == doctest::Approx(0.025 + 0.10));
+}
+
+TEST_CASE("[vehicle] and [controller] reach the controller") {
+  const TempDir dir;
+  const FlightSetup setup =
+      RoomScenario(dir, "[vehicle]\nmass = 0.12\n[controller]\nkind = \"se3\"\nrate = 500\n");
+  CHECK(setup.controller.kind == "se3");
+  CHECK(setup.controller.rate == 500);
+  const std::unique_ptr<Controller> controller = MakeController(setup.controller, setup.vehicle);
+  State hovering;
+  hovering.p_W = Vec3(1, 1, 1);
+  FlatOutput setpoint;
+  setpoint.p_W = hovering.p_W;
+  ControlCommand command;
+  REQUIRE(controller->Update(0.0, hovering, setpoint, &command));
+  CHECK(command.level == CommandLevel::kThrustMoment);        // SE(3): thrust and moments
+  CHECK(command.thrust == doctest::Approx(0.12 * kGravity));  // the scenario's mass holds it up
+
+  const FlightSetup cascade =
+      RoomScenario(dir, "[controller]\nposition_gain = 2\nattitude_gain = [6, 6, 3]\n");
+  CHECK(cascade.controller.cascade.position_gain.isApprox(Vec3::Constant(2)));
+  CHECK(cascade.controller.inner.attitude.gain.isApprox(Vec3(6, 6, 3)));
+}
+
+TEST_CASE("[vehicle], [controller] and [flight]: errors name the line and the key") {
+  CHECK(ScenarioError("map = \"m.txt\"\n[vehicle]\nkind = \"blimp\"\n") ==
+        "scenes/x/scenario.toml:3: vehicle.kind: expected \"tello\" or \"crazyflie\", got "
+        "\"blimp\"");
+  CHECK(ScenarioError("map = \"m.txt\"\n[vehicle]\nmass = 5\n")
+            .rfind("scenes/x/scenario.toml:2: vehicle: QuadParams.max_rotor_thrust 0.4 N cannot "
+                   "lift the mass 5 kg",
+                   0) == 0);
+  CHECK(ScenarioError("map = \"m.txt\"\n[vehicle]\nrotor_directions = [1, 1, -1, 2]\n") ==
+        "scenes/x/scenario.toml:3: vehicle.rotor_directions[3]: expected 1 or -1 (the sign of the "
+        "rotor's yaw moment on the body)");
+  CHECK(
+      ScenarioError("map = \"m.txt\"\n[vehicle]\nmax_rotor_thrust = 0.5\nrotor_speed_max = 2000\n")
+          .find("vehicle.rotor_speed_max: give the rotor limits as thrusts or as speeds") !=
+      std::string::npos);
+  CHECK(ScenarioError("map = \"m.txt\"\n[controller]\nkind = \"lqr\"\n") ==
+        "scenes/x/scenario.toml:3: controller.kind: expected cascade or se3, got \"lqr\"");
+  CHECK(ScenarioError("map = \"m.txt\"\n[controller]\nrate = 300\n") ==
+        "scenes/x/scenario.toml:3: controller.rate: must divide the 1000 Hz physics rate (e.g. "
+        "1000, 500, 250, 200, 100)");
+  CHECK(ScenarioError("map = \"m.txt\"\n[controller]\nposition_gain = [1, 2]\n") ==
+        "scenes/x/scenario.toml:3: controller.position_gain: expected a number or an array of 3 "
+        "numbers");
+  CHECK(ScenarioError("map = \"m.txt\"\n[flight]\nyaw = \"spin\"\n") ==
+        "scenes/x/scenario.toml:3: flight.yaw: expected \"hold\" or \"travel\"");
+  // RotorPy's names: rotor speeds through the thrust coefficient, k_m
+  std::istringstream rotorpy(
+      "map = \"m.txt\"\n[vehicle]\nthrust_coefficient = 2e-7\nrotor_speed_max = 1500\n"
+      "moment_coefficient = 1.2e-9\n");
+  const Scenario scenario = ReadScenario(rotorpy, "s.toml");
+  CHECK(scenario.vehicle.MaxRotorThrust() == doctest::Approx(2e-7 * 1500 * 1500));
+  CHECK(scenario.vehicle.yaw_moment_per_thrust == doctest::Approx(0.006));
+}
+
+}  // namespace aerobox

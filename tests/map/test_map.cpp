@@ -22,6 +22,20 @@ TEST_CASE("DefaultStart finds a free spot on the floor clear of every box") {
   CHECK_FALSE(DefaultStart(map, 0.3, 0.025));
 }
 
+TEST_CASE("DefaultStart rests on a block where blocks cover the floor") {
+  // a course map that models the floor and the ceiling as slabs
+  Map map;
+  map.name = "slabs";
+  map.bounds = {Vec3(0, 0, 0), Vec3(4, 4, 3)};
+  map.boxes.push_back({{Vec3(0, 0, 0), Vec3(4, 4, 0.2)}, Vec3(1, 0, 0), "floor_slab", 1});
+  map.boxes.push_back({{Vec3(0, 0, 2.8), Vec3(4, 4, 3)}, Vec3(1, 0, 0), "ceiling_slab", 2});
+  const std::optional<Vec3> start = DefaultStart(map, 0.3, 0.025);
+  REQUIRE(start);
+  CHECK(start->z() == doctest::Approx(0.2 + 0.025));  // resting on the floor slab
+  const Aabb vehicle{start->array() - 0.025, start->array() + 0.025};
+  CHECK_FALSE(FirstOverlappingBox(map, vehicle));
+}
+
 TEST_CASE("ValidateMap rejects what no reader should produce") {
   Map map;
   map.source = "m.txt";
