@@ -180,7 +180,11 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
         << "  path        " << PathLength(plan.result.path) << " m, " << plan.result.path.size()
         << " waypoints, planned in " << plan.result.stats.planning_time << " s\n"
         << "  trajectory  " << trajectory.stats.duration << " s, max " << trajectory.stats.max_speed
-        << " m/s, solved in " << trajectory.stats.solve_time << " s\n"
+        << " m/s, solved in " << trajectory.stats.solve_time << " s"
+        << (trajectory.stats.solver_message.find("after Ipopt") != std::string::npos
+                ? " (" + trajectory.stats.solver_message + ")"
+                : std::string())
+        << "\n"
         << "  flight      " << ToString(flight.status) << " after " << flight.time << " s ("
         << result.flight_wall_time << " s wall)";
   if (!flight.obstacle.empty()) table << ", hit " << flight.obstacle;

@@ -113,9 +113,21 @@ Map ReadJsonMap(std::istream& in, const std::string& file) {
       box.extent =
           InterleavedExtents(Require(block, "extents", file, field), file, field + ".extents");
       if (const JsonValue* color = block.Find("color")) {
-        const std::vector<double> c = FiniteNumbers(*color, 3, file, field + ".color");
-        box.rgb = map_detail::NormalizeColour(Vec3(c[0], c[1], c[2]), {file, color->line},
-                                              field + ".color");
+        if (color->kind == JsonValue::Kind::kString) {
+          // flightsim draws with matplotlib, which takes colour names
+          const std::optional<Vec3> named = map_detail::NamedColour(color->text);
+          if (!named) {
+            throw InputError(
+                {file, color->line}, field + ".color",
+                "unknown colour name \"" + color->text +
+                    "\" (expected a matplotlib or CSS name, \"#rrggbb\" or [r, g, b])");
+          }
+          box.rgb = *named;
+        } else {
+          const std::vector<double> c = FiniteNumbers(*color, 3, file, field + ".color");
+          box.rgb = map_detail::NormalizeColour(Vec3(c[0], c[1], c[2]), {file, color->line},
+                                                field + ".color");
+        }
       }
       box.name = "block_" + std::to_string(map.boxes.size());
       box.line = block.line;

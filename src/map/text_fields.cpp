@@ -1,5 +1,6 @@
 #include "map/text_fields.h"
 
+#include <cctype>
 #include <cmath>
 #include <iterator>
 
@@ -79,6 +80,52 @@ Vec3 NormalizeColour(const Vec3& raw, const SourceLocation& where, const std::st
     throw InputError(where, field, "colour " + FormatVector(raw) + " is outside 0-255 (or 0-1)");
   }
   return (raw.array() > 1.0).any() ? Vec3(raw / 255.0) : raw;
+}
+
+std::optional<Vec3> NamedColour(const std::string& name) {
+  std::string key;
+  for (const char c : name) key += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (key.size() == 7 && key[0] == '#') {
+    Vec3 rgb;
+    for (int i = 0; i < 3; ++i) {
+      const std::string hex = key.substr(1 + 2 * i, 2);
+      if (hex.find_first_not_of("0123456789abcdef") != std::string::npos) return std::nullopt;
+      rgb[i] = std::stoi(hex, nullptr, 16) / 255.0;
+    }
+    return rgb;
+  }
+  // hex values of matplotlib's base, Tableau and CSS colours
+  static const std::pair<const char*, unsigned> kNames[] = {
+      {"b", 0x0000ff},           {"g", 0x008000},         {"r", 0xff0000},
+      {"c", 0x00bfbf},           {"m", 0xbf00bf},         {"y", 0xbfbf00},
+      {"k", 0x000000},           {"w", 0xffffff},         {"tab:blue", 0x1f77b4},
+      {"tab:orange", 0xff7f0e},  {"tab:green", 0x2ca02c}, {"tab:red", 0xd62728},
+      {"tab:purple", 0x9467bd},  {"tab:brown", 0x8c564b}, {"tab:pink", 0xe377c2},
+      {"tab:gray", 0x7f7f7f},    {"tab:grey", 0x7f7f7f},  {"tab:olive", 0xbcbd22},
+      {"tab:cyan", 0x17becf},    {"black", 0x000000},     {"white", 0xffffff},
+      {"red", 0xff0000},         {"green", 0x008000},     {"blue", 0x0000ff},
+      {"yellow", 0xffff00},      {"cyan", 0x00ffff},      {"aqua", 0x00ffff},
+      {"magenta", 0xff00ff},     {"fuchsia", 0xff00ff},   {"gray", 0x808080},
+      {"grey", 0x808080},        {"lightgray", 0xd3d3d3}, {"lightgrey", 0xd3d3d3},
+      {"darkgray", 0xa9a9a9},    {"darkgrey", 0xa9a9a9},  {"silver", 0xc0c0c0},
+      {"orange", 0xffa500},      {"purple", 0x800080},    {"brown", 0xa52a2a},
+      {"pink", 0xffc0cb},        {"olive", 0x808000},     {"navy", 0x000080},
+      {"teal", 0x008080},        {"maroon", 0x800000},    {"lime", 0x00ff00},
+      {"gold", 0xffd700},        {"tan", 0xd2b48c},       {"beige", 0xf5f5dc},
+      {"violet", 0xee82ee},      {"indigo", 0x4b0082},    {"turquoise", 0x40e0d0},
+      {"salmon", 0xfa8072},      {"coral", 0xff7f50},     {"khaki", 0xf0e68c},
+      {"crimson", 0xdc143c},     {"chocolate", 0xd2691e}, {"darkgreen", 0x006400},
+      {"darkblue", 0x00008b},    {"darkred", 0x8b0000},   {"lightblue", 0xadd8e6},
+      {"lightgreen", 0x90ee90},  {"skyblue", 0x87ceeb},   {"steelblue", 0x4682b4},
+      {"forestgreen", 0x228b22}, {"royalblue", 0x4169e1}, {"slategray", 0x708090},
+      {"slategrey", 0x708090},
+  };
+  for (const auto& [colour, hex] : kNames) {
+    if (key == colour) {
+      return Vec3(((hex >> 16) & 0xff) / 255.0, ((hex >> 8) & 0xff) / 255.0, (hex & 0xff) / 255.0);
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace aerobox::map_detail

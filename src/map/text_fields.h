@@ -2,6 +2,7 @@
 #pragma once
 
 #include <istream>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -38,5 +39,10 @@ double ParseFiniteField(std::string_view token, const SourceLocation& where,
 // A colour written either as 0-255 (any component above 1) or as 0-1, as the map formats do,
 // mapped to [0, 1]. Throws InputError for negative or above-255 components.
 Vec3 NormalizeColour(const Vec3& raw, const SourceLocation& where, const std::string& field);
+
+// A colour by name, as matplotlib takes them (flightsim's worlds use them): the base colours
+// ("b", "g", "r", "c", "m", "y", "k", "w"), the Tableau ones ("tab:blue", ...), the common
+// CSS/X11 names ("blue", "orange", "gray", ...) in any case, and "#rrggbb". RGB in [0, 1].
+std::optional<Vec3> NamedColour(const std::string& name);
 
 }  // namespace aerobox::map_detail

@@ -147,6 +147,13 @@ PlanOutcome PlanFlight(const FlightSetup& setup) {
   PlanOutcome outcome;
   std::tie(outcome.start, outcome.goal) = ResolveEndpoints(
       setup.map, world, setup.start, *setup.goal, setup.start_where, setup.goal_where);
+  if ((outcome.start.used - outcome.goal.used).norm() < 1e-3) {
+    throw InputError(setup.goal_where, "goal",
+                     "the goal " + FormatVector(*setup.goal, ", ") +
+                         " is where the flight starts (" + FormatVector(outcome.start.used, ", ") +
+                         " once both are inside the free space): there is nothing to fly; "
+                         "give another goal");
+  }
   const PlannerContext context{
       world.free_bounds(),
       Validity{[&world](const Vec3& p) { return world.IsPointFree(p); },

@@ -122,6 +122,8 @@ void ReadTrajectory(const toml::table& table, const std::string& file, PlanningS
       settings->trajectory_clearance = Number(node, file, field, 0.0, 10.0);
     } else if (name == "corridors") {
       params.use_corridors = Boolean(node, file, field);
+    } else if (name == "closed_form_fallback") {
+      params.closed_form_fallback = Boolean(node, file, field);
     } else if (name == "corridor_growth") {
       params.corridor_growth = Number(node, file, field, 0.0, 100.0);
     } else if (name == "samples_per_segment") {
@@ -149,9 +151,11 @@ void ReadTrajectory(const toml::table& table, const std::string& file, PlanningS
       std::istringstream in(text);
       settings->given_trajectory = ReadTrajectoryCsv(in, path);
     } else {
-      throw InputError({file, LineOf(node)}, field,
-                       "unknown key (expected max_speed, max_accel, clearance, corridors, "
-                       "corridor_growth, samples_per_segment, max_refinements, method or file)");
+      throw InputError(
+          {file, LineOf(node)}, field,
+          "unknown key (expected max_speed, max_accel, clearance, corridors, "
+          "corridor_growth, samples_per_segment, max_refinements, closed_form_fallback, "
+          "method or file)");
     }
   }
 }

@@ -10,11 +10,31 @@
 namespace aerobox {
 namespace {
 
+// Minimum snap with the corridors; when Ipopt fails on them (restoration failed, maximum
+// iterations: seen on short legs between waypoints a centimetre apart), the closed form without
+// corridors, whose collision-aware refinement inserts midpoints where it leaves free space.
+// Only a trajectory that passes the exact check every 10 ms is returned as solved.
+TrajectoryResult MinSnapWithFallback(const std::vector<Vec3>& path, const TrajectoryWorld& world,
+                                     const TrajectoryParams& params) {
+  TrajectoryResult result = GenerateTrajectory(path, world, params);
+  const bool solver_failed =
+      result.status == TrajectoryStatus::kFailed || result.status == TrajectoryStatus::kInfeasible;
+  if (!solver_failed || !params.use_corridors || !params.closed_form_fallback) return result;
+  TrajectoryParams closed = params;
+  closed.use_corridors = false;
+  TrajectoryResult fallback = GenerateTrajectory(path, world, closed);
+  if (fallback.status != TrajectoryStatus::kSolved) return result;
+  fallback.stats.solver_message =
+      "closed form with refinement, after Ipopt: " + result.stats.solver_message;
+  fallback.stats.solve_time += result.stats.solve_time;
+  return fallback;
+}
+
 class MinSnapGenerator : public TrajectoryGenerator {
  public:
   explicit MinSnapGenerator(const TrajectoryParams& params) : params_(params) {}
   TrajectoryResult Generate(const std::vector<Vec3>& path, const TrajectoryWorld& world) override {
-    return GenerateTrajectory(path, world, params_);
+    return MinSnapWithFallback(path, world, params_);
   }
 
  private:
@@ -28,7 +48,7 @@ class BaselineGenerator : public TrajectoryGenerator {
   BaselineGenerator(TrajectoryMethod method, const TrajectoryParams& params)
       : method_(method), params_(params) {}
   TrajectoryResult Generate(const std::vector<Vec3>& path, const TrajectoryWorld& world) override {
-    TrajectoryResult result = GenerateTrajectory(path, world, params_);
+    TrajectoryResult result = MinSnapWithFallback(path, world, params_);
     if (result.status != TrajectoryStatus::kSolved) return result;
     const auto begin = std::chrono::steady_clock::now();
     result.trajectory =

@@ -13,12 +13,33 @@ namespace {
 // How often a segment whose bounding box is not free is halved before it goes without a corridor.
 constexpr int kMaxSplits = 4;
 
-std::vector<Vec3> WithoutRepeats(const std::vector<Vec3>& path) {
+// Waypoints this close [m] make segments of a few milliseconds, on which Ipopt fails
+// (restoration failed, maximum iterations) where the path itself is fine.
+constexpr double kMergeDistance = 0.02;
+
+// The path without repeated points, and without an interior waypoint within kMergeDistance of
+// the one before it when the leg that skips it is free (the ends never move).
+std::vector<Vec3> WithoutNearRepeats(const std::vector<Vec3>& path, const TrajectoryWorld& world) {
   std::vector<Vec3> points;
   for (const Vec3& p : path) {
     if (points.empty() || (p - points.back()).norm() > 1e-6) points.push_back(p);
   }
-  return points;
+  std::vector<Vec3> merged;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const bool interior = i > 0 && i + 1 < points.size();
+    if (interior && (points[i] - merged.back()).norm() < kMergeDistance &&
+        world.segment_free(merged.back(), points[i + 1])) {
+      continue;
+    }
+    if (!interior && i > 0 && merged.size() > 1 &&
+        (points[i] - merged.back()).norm() < kMergeDistance &&
+        world.segment_free(merged[merged.size() - 2], points[i])) {
+      merged.back() = points[i];  // the goal stays; the waypoint just before it goes
+      continue;
+    }
+    merged.push_back(points[i]);
+  }
+  return merged;
 }
 
 // Halves segments whose bounding box is not free (a diagonal past a corner), so that each
@@ -98,7 +119,7 @@ TrajectoryResult GenerateTrajectory(const std::vector<Vec3>& path, const Traject
   params.Validate();
   const auto begin = std::chrono::steady_clock::now();
   TrajectoryResult result;
-  result.waypoints = WithoutRepeats(path);
+  result.waypoints = WithoutNearRepeats(path, world);
   if (result.waypoints.size() < 2)
     throw std::invalid_argument("GenerateTrajectory: path too short");
 

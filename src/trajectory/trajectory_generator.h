@@ -27,6 +27,9 @@ struct TrajectoryParams {
   double check_step = 0.01;      // [s] between samples of the collision check and the limits
   // gradient steps redistributing the trapezoidal times to lower the snap (0: keep them)
   int time_refinement_steps = 20;
+  // when Ipopt fails on the corridors, try the closed form with collision-aware refinement
+  // (generators.h: MinSnapWithFallback)
+  bool closed_form_fallback = true;
   IpoptSettings ipopt;
 
   // Throws std::invalid_argument naming the field and value.

@@ -73,15 +73,29 @@ TEST_CASE("a non-finite value in the controller: status non-finite, exit 5") {
   CHECK_FALSE(HasPartialFiles(out));
 }
 
-TEST_CASE("an Ipopt failure: exit 4 with Ipopt's reason") {
+TEST_CASE(
+    "an Ipopt failure: the closed form takes over, and without it exit 4 with Ipopt's reason") {
   const testing::TempDir dir;
   const std::filesystem::path out = dir.path() / "out";
-  const testing::CliRun run = FlyWindow(out.string(), "ipopt");
+  // by default the closed form with refinement takes over, and says why
+  const testing::CliRun fallback = FlyWindow(out.string(), "ipopt");
+  CHECK(fallback.code == kExitReachedGoal);
+  CHECK(fallback.out.find("(closed form with refinement, after Ipopt: maximum iterations "
+                          "exceeded)") != std::string::npos);
+  const std::string window = (testing::SourceDir() / "scenes" / "window" / "map.json").string();
+  const std::string scenario =
+      dir.Write("strict.toml", "name = \"window\"\nmap = \"" + window +
+                                   "\"\n[trajectory]\nclosed_form_fallback = false\n");
+  const std::filesystem::path strict_out = dir.path() / "strict";
+  setenv("AEROBOX_FAULT", "ipopt", 1);
+  const testing::CliRun run =
+      testing::RunAerobox({"fly", scenario, "--no-video", "--quiet", "--out", strict_out.string()});
+  unsetenv("AEROBOX_FAULT");
   CHECK(run.code == kExitNoTrajectory);
   CHECK(run.out.find("no trajectory (maximum iterations exceeded)") != std::string::npos);
-  CHECK(testing::ReadSummary(out / "summary.json")["status"] == "no feasible trajectory");
-  CHECK_FALSE(std::filesystem::exists(out / "telemetry.csv"));
-  CHECK_FALSE(HasPartialFiles(out));
+  CHECK(testing::ReadSummary(strict_out / "summary.json")["status"] == "no feasible trajectory");
+  CHECK_FALSE(std::filesystem::exists(strict_out / "telemetry.csv"));
+  CHECK_FALSE(HasPartialFiles(strict_out));
 }
 
 }  // namespace aerobox

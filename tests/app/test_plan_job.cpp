@@ -256,3 +256,36 @@ TEST_CASE("planners by name: given waypoints are checked, and a user's planner i
 }
 
 }  // namespace aerobox
+
+namespace aerobox {
+
+TEST_CASE("small maps: every one of 20 seeds gets a trajectory (Ipopt's failures fall back)") {
+  const testing::TempDir dir;
+  // a lab room with a table and a shelf along one wall (a 1.8 m flight), and a 3 m corridor
+  // 0.8 m wide with a pillar in its middle
+  dir.Write("lab.txt",
+            "boundary 0 0 0 3.5 3 2\nblock 1.2 1.0 0 2.0 1.8 0.8\nblock 0 2.6 0 3.5 3 2\n");
+  dir.Write("corridor.txt", "boundary 0 0 0 3 0.8 1.2\nblock 1.4 0.3 0 1.6 0.5 1.2\n");
+  const std::pair<const char*, const char*> maps[] = {
+      {"lab.txt", "start = [0.5, 0.5, 0.3]\ngoal = [1.6, 2.2, 1.2]\n"},
+      {"corridor.txt", "start = [0.2, 0.4, 0.6]\ngoal = [2.8, 0.4, 0.6]\n"}};
+  int fallbacks = 0;
+  for (const auto& [map, endpoints] : maps) {
+    for (int seed = 1; seed <= 20; ++seed) {
+      CAPTURE(map);
+      CAPTURE(seed);
+      const std::string scenario =
+          dir.Write("s.toml", "map = \"" + std::string(map) + "\"\n" + endpoints +
+                                  "seed = " + std::to_string(seed) + "\n");
+      const FlightSetup setup = LoadFlightSetup(scenario, {});
+      const PlanOutcome plan = PlanFlight(setup);
+      REQUIRE(plan.result.status == PlanStatus::kSolved);
+      REQUIRE(plan.trajectory);
+      CHECK(plan.trajectory->status == TrajectoryStatus::kSolved);
+      fallbacks += plan.trajectory->stats.solver_message.find("after Ipopt") != std::string::npos;
+    }
+  }
+  MESSAGE("small maps: " << fallbacks << " of 40 trajectories needed the closed form");
+}
+
+}  // namespace aerobox

@@ -99,3 +99,27 @@ TEST_CASE("JSON: bad input names the file, the line and the field") {
 }
 
 }  // namespace aerobox
+
+namespace aerobox {
+
+TEST_CASE("JSON: flightsim's matplotlib colour names") {
+  const std::string text = R"({"bounds": {"extents": [0, 5, 0, 5, 0, 3]},
+    "blocks": [{"extents": [1, 2, 1, 2, 0, 1], "color": "blue"},
+               {"extents": [3, 4, 3, 4, 0, 1], "color": "tab:orange"},
+               {"extents": [1, 2, 3, 4, 0, 1], "color": "#FF8000"},
+               {"extents": [3, 4, 1, 2, 0, 1], "color": "k"}]})";
+  std::istringstream in(text);
+  const Map map = ReadMap(in, "named.json", MapFormat::kJson);
+  REQUIRE(map.boxes.size() == 4);
+  CHECK(map.boxes[0].rgb.isApprox(Vec3(0, 0, 1)));
+  CHECK(map.boxes[1].rgb.isApprox(Vec3(1.0, 127 / 255.0, 14 / 255.0)));
+  CHECK(map.boxes[2].rgb.isApprox(Vec3(1.0, 128 / 255.0, 0)));
+  CHECK(map.boxes[3].rgb.isApprox(Vec3(0, 0, 0)));
+  std::istringstream bad(R"({"bounds": {"extents": [0, 5, 0, 5, 0, 3]},
+    "blocks": [{"extents": [1, 2, 1, 2, 0, 1], "color": "blurple"}]})");
+  CHECK_THROWS_WITH_AS(ReadMap(bad, "bad.json", MapFormat::kJson),
+                       doctest::Contains("bad.json:2: blocks[0].color: unknown colour name"),
+                       InputError);
+}
+
+}  // namespace aerobox
