@@ -170,8 +170,7 @@ int RunScene(const FlightSetup& setup, const std::string& output, std::ostream& 
   return kExitReachedGoal;
 }
 
-int RunPlan(const FlightSetup& setup, const std::string& out_dir, std::ostream& out) {
-  const std::string folder = PrepareOutputFolder(out_dir, setup.name);
+int PlanInto(const FlightSetup& setup, const std::string& folder, std::ostream& out) {
   const PlanOutcome plan = PlanFlight(setup);
   for (const Endpoint* e : {&plan.start, &plan.goal}) {
     if (e->moved > 0) {
@@ -231,6 +230,13 @@ int RunPlan(const FlightSetup& setup, const std::string& out_dir, std::ostream& 
           << " m/s^2 -> " << trajectory_file << "\n";
   out << summary.str();
   return kExitReachedGoal;
+}
+
+int RunPlan(const FlightSetup& setup, const std::string& out_dir, std::ostream& out) {
+  const OutputFolder output(out_dir, setup.name);
+  const int code = PlanInto(setup, output.path(), out);
+  output.RemoveStale();  // the folder holds this run's outputs only
+  return code;
 }
 
 // `aerobox bench ARGS...`: the benchmarks are a separate binary, aerobox-bench beside this one,

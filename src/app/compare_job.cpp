@@ -114,7 +114,8 @@ std::string ProfilesCsv(const PlanOutcome& plan) {
 
 int RunCompare(const std::vector<std::string>& scenarios, const std::string& out_dir,
                std::ostream& out, std::ostream& progress) {
-  const std::string folder = PrepareOutputFolder(out_dir, "compare");
+  const OutputFolder output(out_dir, "compare");
+  const std::string& folder = output.path();
   out << "| map | generator | integral snap^2 [m^2/s^7] | integral jerk^2 [m^2/s^5] | largest "
          "jerk jump [m/s^3] | max speed [m/s] | max accel [m/s^2] | rotors saturated [s] | "
          "tracking RMS [m] | flight | solve [ms] "

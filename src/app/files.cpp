@@ -1,5 +1,10 @@
 #include "app/files.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -16,6 +21,8 @@
 namespace aerobox {
 namespace fs = std::filesystem;
 
+std::string PartialSuffix() { return "." + std::to_string(getpid()) + ".partial"; }
+
 namespace {
 
 // An injected write failure for this file (see common/fault_injection.h).
@@ -29,7 +36,7 @@ bool WriteFails(const std::string& path) {
 void WriteFileAtomically(const std::string& path, const std::string& text) {
   const fs::path target(path);
   fs::path temporary = target;
-  temporary += ".partial";
+  temporary += PartialSuffix();
   RegisterPartialFile(temporary.string());
   struct Unregister {
     std::string path;
@@ -58,7 +65,7 @@ void WriteFileAtomically(const std::string& path, const std::string& text) {
 }
 
 StreamingFile::StreamingFile(std::string path)
-    : path_(std::move(path)), partial_(path_ + ".partial") {
+    : path_(std::move(path)), partial_(path_ + PartialSuffix()) {
   RegisterPartialFile(partial_);
   file_ = std::fopen(partial_.c_str(), "wb");
   if (file_ == nullptr) {
@@ -99,21 +106,90 @@ void StreamingFile::Commit() {
   }
 }
 
-std::string PrepareOutputFolder(const std::string& requested, const std::string& name,
-                                bool* created) {
+OutputFolder::OutputFolder(const std::string& requested, const std::string& name)
+    : run_start_(fs::file_time_type::clock::now()) {
   const fs::path folder = requested.empty() ? fs::path("renders") / name : fs::path(requested);
+  path_ = folder.string();
   std::error_code ec;
   const bool existed = fs::exists(folder, ec);
   fs::create_directories(folder, ec);
-  if (created != nullptr) *created = !existed && !ec;
+  created_ = !existed && !ec;
   if (ec || !fs::is_directory(folder)) {
     throw InputError({folder.string(), 0}, "--out",
                      "cannot create the output folder: " + ec.message());
   }
+  // one run at a time per folder: an advisory lock on a file holding the owner's process id
+  lock_path_ = (folder / ".aerobox.lock").string();
+  while (true) {
+    lock_fd_ = open(lock_path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (lock_fd_ < 0) {
+      throw InputError({path_, 0}, "--out",
+                       std::string("cannot write in the output folder: ") + std::strerror(errno));
+    }
+    if (flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+      // the owner writes its process id just after taking the lock: wait a moment for it
+      std::string pid;
+      for (int attempt = 0; attempt < 20 && pid.empty(); ++attempt) {
+        char holder[32] = {0};
+        const ssize_t n = pread(lock_fd_, holder, sizeof(holder) - 1, 0);
+        pid = n > 0 ? std::string(holder, static_cast<size_t>(n)) : "";
+        while (!pid.empty() && (pid.back() == '\n' || pid.back() == ' ')) pid.pop_back();
+        if (pid.empty()) usleep(10000);
+      }
+      close(lock_fd_);
+      lock_fd_ = -1;
+      throw InputError({path_, 0}, "--out",
+                       "another aerobox run" + (pid.empty() ? "" : " (process " + pid + ")") +
+                           " is writing into this folder; wait for it or give another --out");
+    }
+    // the file may have been removed by its last owner between our open and our lock
+    struct stat opened {
+    }, named{};
+    if (fstat(lock_fd_, &opened) == 0 && stat(lock_path_.c_str(), &named) == 0 &&
+        opened.st_ino == named.st_ino) {
+      break;
+    }
+    close(lock_fd_);
+  }
+  const std::string pid = std::to_string(getpid()) + "\n";
+  if (ftruncate(lock_fd_, 0) != 0 || pwrite(lock_fd_, pid.data(), pid.size(), 0) < 0) {
+    // the lock holds without the note of its owner
+  }
+  RegisterPartialFile(lock_path_);  // the Ctrl-C watchdog removes it too
   const fs::path probe = folder / ".aerobox-write-test";
   WriteFileAtomically(probe.string(), "");
   fs::remove(probe, ec);
-  return folder.string();
+}
+
+OutputFolder::~OutputFolder() {
+  if (lock_fd_ < 0) return;
+  UnregisterPartialFile(lock_path_);
+  std::remove(lock_path_.c_str());
+  close(lock_fd_);  // releases the lock
+  // bad input leaves nothing behind: not even the folder this run made, when it stayed empty
+  std::error_code ec;
+  if (created_ && fs::is_empty(path_, ec)) fs::remove(path_, ec);
+}
+
+void OutputFolder::RemoveStale() const {
+  // the files aerobox writes; one not written by this run is an earlier run's
+  static const char* const kOutputs[] = {"path.csv",     "trajectory.csv", "telemetry.csv",
+                                         "summary.json", "overview.png",   "video.mp4"};
+  std::error_code ec;
+  const auto stale = [&](const fs::path& file) {
+    const fs::file_time_type written = fs::last_write_time(file, ec);
+    return !ec && written < run_start_;
+  };
+  for (const char* name : kOutputs) {
+    const fs::path file = fs::path(path_) / name;
+    if (fs::exists(file, ec) && stale(file)) fs::remove(file, ec);
+  }
+  const fs::path frames = fs::path(path_) / "frames";
+  if (!fs::is_directory(frames, ec)) return;
+  for (const fs::directory_entry& entry : fs::directory_iterator(frames, ec)) {
+    if (entry.path().extension() == ".png" && stale(entry.path())) fs::remove(entry.path(), ec);
+  }
+  if (fs::is_empty(frames, ec)) fs::remove(frames, ec);
 }
 
 }  // namespace aerobox

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 namespace aerobox {
@@ -30,10 +31,33 @@ class StreamingFile {
   std::FILE* file_ = nullptr;
 };
 
-// The output folder: `requested`, or renders/<name>/ when it is empty; created, and proven
-// writable (a probe file is written and removed) before any work starts. Throws InputError.
-// `created`, when given, tells whether this call made the folder.
-std::string PrepareOutputFolder(const std::string& requested, const std::string& name,
-                                bool* created = nullptr);
+// ".<process id>.partial": the suffix of this process's temporary files, so that two runs
+// never write one temporary file.
+std::string PartialSuffix();
+
+// A run's output folder: `requested`, or renders/<name>/ when it is empty; created, locked
+// against other aerobox runs (a second run into it stops with exit 2, naming the holder), and
+// proven writable before any work starts. Throws InputError. Released when destroyed, and
+// removed when this run made it and left it empty.
+class OutputFolder {
+ public:
+  OutputFolder(const std::string& requested, const std::string& name);
+  ~OutputFolder();
+  OutputFolder(const OutputFolder&) = delete;
+  OutputFolder& operator=(const OutputFolder&) = delete;
+
+  const std::string& path() const { return path_; }
+
+  // After a run: removes the outputs aerobox writes (path.csv ... video.mp4, frames/) that this
+  // run did not write, so that the folder holds exactly this run's outputs.
+  void RemoveStale() const;
+
+ private:
+  std::string path_;
+  std::string lock_path_;
+  int lock_fd_ = -1;
+  bool created_ = false;
+  std::filesystem::file_time_type run_start_;
+};
 
 }  // namespace aerobox

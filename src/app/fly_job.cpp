@@ -97,7 +97,8 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
   CsvOutputs csv(folder);
   RenderOutputs pictures(folder, setup, render, err);
   // the watchdog removes the video's temporary file if it has to end the process
-  const std::string video_partial = (fs::path(folder) / "video.mp4.partial").string();
+  const std::string video_partial =
+      VideoEncoder::TemporaryPath((fs::path(folder) / "video.mp4").string());
   if (options.video) RegisterPartialFile(video_partial);
   struct Unregister {
     std::string path;
@@ -210,16 +211,11 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
 
 int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& out,
            std::ostream& err) {
-  bool created = false;
-  const std::string folder = PrepareOutputFolder(options.out_dir, setup.name, &created);
-  try {
-    return FlyInto(folder, setup, options, out, err);
-  } catch (const InputError&) {
-    // bad input leaves nothing behind: not even the folder this run made (if still empty)
-    std::error_code ec;
-    if (created && fs::is_empty(folder, ec)) fs::remove(folder, ec);
-    throw;
-  }
+  const OutputFolder folder(options.out_dir, setup.name);
+  const int code = FlyInto(folder.path(), setup, options, out, err);
+  // the folder holds this run's outputs only (an interrupted run keeps what it had)
+  if (code != kExitInterrupted) folder.RemoveStale();
+  return code;
 }
 
 }  // namespace aerobox

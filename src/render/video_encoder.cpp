@@ -7,6 +7,8 @@ extern "C" {
 #include <libswscale/swscale.h>
 }
 
+#include <unistd.h>
+
 #include <condition_variable>
 #include <cstdio>
 #include <deque>
@@ -134,7 +136,7 @@ VideoEncoder::VideoEncoder(const std::string& path, int width, int height, int f
   if (fps <= 0) throw std::runtime_error("video: fps must be positive");
   av_log_set_level(AV_LOG_ERROR);
   v.path = path;
-  v.partial = path + ".partial";
+  v.partial = TemporaryPath(path);
   v.width = width;
   v.height = height;
   v.fps = fps;
@@ -220,6 +222,10 @@ void VideoEncoder::Finish() {
     throw std::runtime_error("video: cannot move " + v.partial + " into place");
   }
   v.finished = true;
+}
+
+std::string VideoEncoder::TemporaryPath(const std::string& path) {
+  return path + "." + std::to_string(getpid()) + ".partial";
 }
 
 int VideoEncoder::frames_written() const {

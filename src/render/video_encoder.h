@@ -29,6 +29,10 @@ class VideoEncoder {
 
   int frames_written() const;
 
+  // The temporary file a video for `path` is written to: "<path>.<process id>.partial", so
+  // that two processes never share one.
+  static std::string TemporaryPath(const std::string& path);
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
