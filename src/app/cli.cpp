@@ -152,6 +152,13 @@ int RunCheck(const FlightSetup& setup, std::ostream& out) {
     CheckEndpoint(setup, setup.start, "start", setup.start_origin);
   }
   if (setup.goal) CheckEndpoint(setup, *setup.goal, "goal", setup.goal_origin);
+  // where planning will take them: moved off the floor or the walls, out of the clearance
+  if (setup.goal && setup.start_origin != kNoStart) {
+    const CollisionWorld world(setup.map, setup.PlannerCollision());
+    const auto [start, goal] = ResolveEndpoints(setup.map, world, setup.start, *setup.goal,
+                                                setup.start_where, setup.goal_where);
+    out << DescribeMoves(start, goal);
+  }
 
   const Simulation sim = Simulation::FromXml(SceneMjcfFor(setup), map.source + " (scene)");
   row("scene") << "loads in MuJoCo " << mj_versionString() << " (" << sim.model()->ngeom
@@ -172,13 +179,7 @@ int RunScene(const FlightSetup& setup, const std::string& output, std::ostream& 
 
 int PlanInto(const FlightSetup& setup, const std::string& folder, std::ostream& out) {
   const PlanOutcome plan = PlanFlight(setup);
-  for (const Endpoint* e : {&plan.start, &plan.goal}) {
-    if (e->moved > 0) {
-      out << (e == &plan.start ? "start" : "goal") << " moved " << std::fixed
-          << std::setprecision(3) << e->moved << std::defaultfloat << " m " << e->why << ": "
-          << FormatVector(e->requested, ", ") << " -> " << FormatVector(e->used, ", ") << "\n";
-    }
-  }
+  out << DescribeMoves(plan.start, plan.goal);
   const PlanStats& stats = plan.result.stats;
   std::ostringstream timing;
   timing << std::fixed << std::setprecision(3) << stats.planning_time;
@@ -342,7 +343,9 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   std::string size = "640x480";
   fly->add_option("--size", size, "video size WxH, at most 1920x1080")->capture_default_str();
   fly->add_option("--fps", fly_options.fps, "video frames per second")->capture_default_str();
-  fly->add_option("--speed", fly_options.speed, "playback speed (2: twice as fast)")
+  fly->add_option("--playback,--speed", fly_options.speed,
+                  "video playback speed (2: the video shows the flight twice as fast); not the "
+                  "vehicle's speed, which is --max-speed")
       ->capture_default_str();
   fly->add_option("--camera", fly_options.camera, "chase, overview or top")->capture_default_str();
   fly->add_option("--quality", fly_options.quality, "fast or pretty")->capture_default_str();
@@ -356,6 +359,17 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
                   "septic-full; or given (the scenario's [trajectory] file)");
   fly->add_option("--frames-every", fly_options.frames_every,
                   "also write frames/frame_NNNNNN.png every this many seconds of flight");
+
+  double max_speed = 0, max_accel = 0;
+  for (CLI::App* command : {plan, fly}) {
+    command->add_option("--max-speed", max_speed,
+                        "the trajectory's speed limit [m/s] ([trajectory] max_speed)");
+    command->add_option("--max-accel", max_accel,
+                        "the trajectory's acceleration limit [m/s^2] ([trajectory] max_accel)");
+  }
+  fly->add_option("--telemetry-rate", fly_options.telemetry_rate,
+                  "telemetry.csv rows per second [Hz] (default: every control step); must "
+                  "divide the controller's rate");
 
   CLI::App* check = app.add_subcommand(
       "check", "validate a map or scenario and print a summary (exit 2 when it is bad)");
@@ -402,6 +416,27 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     overrides.goal = ParsePointOption(goal_text, "--goal");
     if (seed_given) overrides.seed = seed;
     FlightSetup setup = LoadFlightSetup(input, overrides);
+    if (max_speed != 0) {
+      if (!(max_speed >= 0.01 && max_speed <= 8.0)) {
+        throw InputError({"command line", 0}, "--max-speed",
+                         "expected 0.01 to 8 m/s (a Tello's top speed)");
+      }
+      setup.planning.trajectory.max_speed = max_speed;
+    }
+    if (max_accel != 0) {
+      if (!(max_accel >= 0.01 && max_accel <= 10.0)) {
+        throw InputError({"command line", 0}, "--max-accel", "expected 0.01 to 10 m/s^2");
+      }
+      setup.planning.trajectory.max_accel = max_accel;
+    }
+    if (fly->parsed() && fly_options.telemetry_rate != 0) {
+      const double every = setup.controller.rate / fly_options.telemetry_rate;
+      if (!(fly_options.telemetry_rate > 0) || std::abs(every - std::round(every)) > 1e-9) {
+        throw InputError({"command line", 0}, "--telemetry-rate",
+                         "must divide the controller's rate, " +
+                             FormatNumber(setup.controller.rate) + " Hz (e.g. 250, 50, 10)");
+      }
+    }
     if (!trajectory_method.empty()) {
       if (TrajectoryGenerators().Find(trajectory_method) == nullptr ||
           (trajectory_method == "given" && setup.planning.given_trajectory.empty())) {

@@ -94,7 +94,11 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
 
   // the outputs, each an observer of the run
   StopOnRequest stop(&StopRequested());
-  CsvOutputs csv(folder);
+  const int every =
+      options.telemetry_rate > 0
+          ? static_cast<int>(std::lround(setup.controller.rate / options.telemetry_rate))
+          : 1;
+  CsvOutputs csv(folder, every);
   RenderOutputs pictures(folder, setup, render, err);
   // the watchdog removes the video's temporary file if it has to end the process
   const std::string video_partial =
@@ -146,7 +150,8 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
     return code;
   };
   if (result.status == MissionStatus::kNoPath) {
-    out << "fly " << setup.name << ": " << ToString(plan.result.status) << "\n";
+    out << DescribeMoves(plan.start, plan.goal) << "fly " << setup.name << ": "
+        << ToString(plan.result.status) << "\n";
     return finish(kExitNoPath);
   }
   const TrajectoryResult& trajectory = *plan.trajectory;
@@ -171,15 +176,17 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
       .Add("collisions", flight.status == FlightStatus::kCollision ? 1 : 0)
       .Add("collision_with", flight.obstacle)
       .Add("simulation_warning", flight.message)
-      .Add("telemetry_rate_hz", flight.control_rate)
+      .Add("control_rate_hz", flight.control_rate)
+      .Add("telemetry_rate_hz", flight.control_rate / every)
       .Add("video_frames", pictures.video_frames())
       .Add("video_fps", options.fps);
 
   std::ostringstream table;
   table << std::fixed << std::setprecision(3);
   table << "fly " << setup.name << " (seed " << setup.seed << ")\n"
-        << "  path        " << PathLength(plan.result.path) << " m, " << plan.result.path.size()
-        << " waypoints, planned in " << plan.result.stats.planning_time << " s\n"
+        << DescribeMoves(plan.start, plan.goal) << "  path        " << PathLength(plan.result.path)
+        << " m, " << plan.result.path.size() << " waypoints, planned in "
+        << plan.result.stats.planning_time << " s\n"
         << "  trajectory  " << trajectory.stats.duration << " s, max " << trajectory.stats.max_speed
         << " m/s, solved in " << trajectory.stats.solve_time << " s"
         << (trajectory.stats.solver_message.find("after Ipopt") != std::string::npos

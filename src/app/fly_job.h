@@ -19,6 +19,7 @@ struct FlyOptions {
   std::string quality = "fast";  // fast or pretty
   bool progress = true;          // a progress line on standard error when it is a terminal
   double frames_every = 0.0;     // [s] of simulation between PNG frames in frames/ (0: none)
+  double telemetry_rate = 0.0;   // [Hz] of telemetry.csv rows (0: every control step)
   bool show_tree = false;        // draw the RRT* tree: growing in the video's first seconds,
                                  // whole in overview.png
 };

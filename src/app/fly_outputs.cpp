@@ -34,7 +34,8 @@ void StopOnRequest::OnSample(const TelemetrySample&) {
   if (*stop_) throw Interrupted();
 }
 
-CsvOutputs::CsvOutputs(std::string folder) : folder_(std::move(folder)) {}
+CsvOutputs::CsvOutputs(std::string folder, int every)
+    : folder_(std::move(folder)), every_(std::max(1, every)) {}
 CsvOutputs::~CsvOutputs() = default;
 
 void CsvOutputs::OnPlan(const PlanOutcome& plan) {
@@ -54,6 +55,7 @@ void CsvOutputs::OnFlightStart(const Simulation&, const Controller& controller) 
 }
 
 void CsvOutputs::OnSample(const TelemetrySample& sample) {
+  if (samples_++ % every_ != 0) return;
   AddTelemetryRow(sample, block_.get());
   if (block_->rows() < kTelemetryBlock) return;
   telemetry_file_->Append(block_->Text().substr(header_length_));

@@ -37,7 +37,8 @@ class StopOnRequest : public MissionObserver {
 // of rows, under a temporary name, renamed when the flight is over).
 class CsvOutputs : public MissionObserver {
  public:
-  explicit CsvOutputs(std::string folder);
+  // `every`: one telemetry row per this many control steps
+  explicit CsvOutputs(std::string folder, int every = 1);
   ~CsvOutputs() override;
   void OnPlan(const PlanOutcome& plan) override;
   void OnFlightStart(const Simulation&, const Controller& controller) override;
@@ -46,6 +47,8 @@ class CsvOutputs : public MissionObserver {
 
  private:
   std::string folder_;
+  int every_;
+  long samples_ = 0;
   std::unique_ptr<StreamingFile> telemetry_file_;
   std::vector<std::string> controller_columns_;
   std::unique_ptr<CsvTable> block_;

@@ -102,6 +102,18 @@ std::pair<Endpoint, Endpoint> ResolveEndpoints(const Map& map, const CollisionWo
           Resolve(map, world, touching, goal, "goal", goal_where)};
 }
 
+std::string DescribeMoves(const Endpoint& start, const Endpoint& goal) {
+  std::string text;
+  for (const Endpoint* e : {&start, &goal}) {
+    if (!(e->moved > 0)) continue;
+    char moved[32];
+    std::snprintf(moved, sizeof(moved), "%.3f", e->moved);
+    text += std::string(e == &start ? "start" : "goal") + " moved " + moved + " m " + e->why +
+            ": " + FormatVector(e->requested, ", ") + " -> " + FormatVector(e->used, ", ") + "\n";
+  }
+  return text;
+}
+
 bool IsCityScale(const Map& map) { return map.bounds.Size().head<2>().maxCoeff() > 200.0; }
 
 std::string PlannerKindFor(const FlightSetup& setup) {

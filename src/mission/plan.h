@@ -35,6 +35,10 @@ std::pair<Endpoint, Endpoint> ResolveEndpoints(const Map& map, const CollisionWo
                                                const SourceLocation& start_where = {},
                                                const SourceLocation& goal_where = {});
 
+// One line per moved endpoint: "start moved 0.125 m off the bounds/floor: a -> b" ("" when
+// neither moved).
+std::string DescribeMoves(const Endpoint& start, const Endpoint& goal);
+
 struct PlanOutcome {
   Endpoint start;
   Endpoint goal;

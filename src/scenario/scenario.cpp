@@ -498,7 +498,11 @@ Scenario ReadScenario(std::istream& in, const std::string& file) {
 
   Scenario scenario;
   scenario.file = file;
-  scenario.name = fs::absolute(fs::path(file)).parent_path().filename().string();
+  // the file's stem, so that several scenarios in one folder write to their own outputs; a
+  // file called scenario.toml is named after its folder (scenes/<name>/scenario.toml)
+  const fs::path absolute = fs::absolute(fs::path(file));
+  scenario.name = absolute.stem() == "scenario" ? absolute.parent_path().filename().string()
+                                                : absolute.stem().string();
   for (const auto& [key, node] : table) {
     const std::string name(key.str());
     const SourceLocation where{file, LineOf(node)};

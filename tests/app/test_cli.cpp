@@ -8,6 +8,7 @@
 #include "app/exit_codes.h"
 #include "cli_runner.h"
 #include "common/error.h"
+#include "scenario/scenario.h"
 #include "sim/simulation.h"
 #include "summary_json.h"
 #include "test_support.h"
@@ -56,6 +57,7 @@ TEST_CASE("check prints a summary of a good map and exits 0") {
   // the settings in force
   CHECK(run.out.find("vehicle   tello: 0.08 kg") != std::string::npos);
   CHECK(run.out.find("control   cascade at 250 Hz") != std::string::npos);
+  CHECK(run.out.find("start moved 0.125 m off the bounds/floor") != std::string::npos);
 
   // a scenario's tables, resolved
   const std::string scenario =
@@ -255,6 +257,35 @@ TEST_CASE("fly a given trajectory: aerobox's own trajectory.csv flown as it is")
   CHECK(refused.err.find("bad.csv:3: sample:") != std::string::npos);
 }
 
+TEST_CASE("fly: --max-speed, --max-accel, --telemetry-rate, --playback; scenarios named by stem") {
+  const TempDir dir;
+  dir.Write("room.txt", "boundary 0 0 0 6 6 2\nblock 2.5 0 0 3 4.5 2\n");
+  // two scenarios in one folder: each is named after its file, so each has its own outputs
+  const std::string slow =
+      dir.Write("slow.toml", "map = \"room.txt\"\nstart = [1, 1, 1]\ngoal = [5, 1, 1]\n");
+  CHECK(LoadFlightSetup(slow, {}).name == "slow");
+  const std::string out = (dir.path() / "out").string();
+  const Run run = Aerobox({"fly", slow, "--no-video", "--quiet", "--out", out, "--max-speed", "1",
+                           "--max-accel", "1.5", "--telemetry-rate", "50", "--playback", "2"});
+  CAPTURE(run.err);
+  REQUIRE(run.code == kExitReachedGoal);
+  const nlohmann::json summary = testing::ReadSummary(fs::path(out) / "summary.json");
+  CHECK(summary["speed_limit_mps"] == 1.0);
+  CHECK(summary["accel_limit_mps2"] == 1.5);
+  // the scale to the limit is found on 10 ms samples: 0.5 % covers what lies between
+  CHECK(testing::SummaryNumber(summary, "trajectory_max_speed_mps") <= 1.005);
+  CHECK(summary["telemetry_rate_hz"] == 50.0);
+  const std::string telemetry = testing::ReadFile(fs::path(out) / "telemetry.csv");
+  const double rows = static_cast<double>(std::count(telemetry.begin(), telemetry.end(), '\n') - 1);
+  CHECK(rows ==
+        doctest::Approx(50 * testing::SummaryNumber(summary, "flight_time_s")).epsilon(0.02));
+  CHECK(Aerobox({"fly", slow, "--no-video", "--quiet", "--out", out, "--telemetry-rate", "300"})
+            .err.find("--telemetry-rate: must divide the controller's rate, 250 Hz") !=
+        std::string::npos);
+  CHECK(Aerobox({"fly", slow, "--no-video", "--quiet", "--out", out, "--max-speed", "20"})
+            .err.find("--max-speed: expected 0.01 to 8 m/s") != std::string::npos);
+}
+
 TEST_CASE("model writes the vehicle's MJCF") {
   const Run run = Aerobox({"model"});
   CHECK(run.code == kExitReachedGoal);
@@ -292,6 +323,15 @@ TEST_CASE("fly: plans, flies and writes path, trajectory, telemetry and summary"
   CHECK(testing::SummaryNumber(summary, "tracking_rms_m") < 0.06);
   CHECK(testing::SummaryNumber(summary, "min_clearance_m") > 0);
   CHECK(summary["seed"] == 1);
+  // the start on the floor moved up: said, and both points in the summary
+  CHECK(
+      stdout_text.str().find("start moved 0.125 m off the bounds/floor: 1, 1, 0 -> 1, 1, 0.125") !=
+      std::string::npos);
+  CHECK(summary["start_requested"] == nlohmann::json::array({1, 1, 0}));
+  CHECK(summary["start"][2].get<double>() == doctest::Approx(0.125));
+  CHECK(summary["goal_requested"] == summary["goal"]);
+  CHECK(summary["map"] == room);
+  CHECK(summary["speed_limit_mps"] == 2.0);
 
   // the same seed gives byte-identical path, trajectory and telemetry
   const std::string again = (dir.path() / "again").string();
