@@ -257,7 +257,7 @@ TEST_CASE("fly a given trajectory: aerobox's own trajectory.csv flown as it is")
   CHECK(refused.err.find("bad.csv:3: sample:") != std::string::npos);
 }
 
-TEST_CASE("fly: --max-speed, --max-accel, --telemetry-rate, --playback; scenarios named by stem") {
+TEST_CASE("fly: --max-speed, --max-accel, --telemetry-rate, --playback, scenarios named by stem") {
   const TempDir dir;
   dir.Write("room.txt", "boundary 0 0 0 6 6 2\nblock 2.5 0 0 3 4.5 2\n");
   // two scenarios in one folder: each is named after its file, so each has its own outputs
