@@ -178,6 +178,9 @@ int RunScene(const FlightSetup& setup, const std::string& output, std::ostream& 
 }
 
 int PlanInto(const FlightSetup& setup, const std::string& folder, std::ostream& out) {
+  if (const std::string warning = LimitsWarning(setup); !warning.empty()) {
+    out << "warning: " << warning << "\n";
+  }
   const PlanOutcome plan = PlanFlight(setup);
   out << DescribeMoves(plan.start, plan.goal);
   const PlanStats& stats = plan.result.stats;

@@ -28,6 +28,10 @@ namespace aerobox {
 namespace fs = std::filesystem;
 namespace {
 
+// [m] from the setpoint at worst: beyond it a flight is reported as not following its trajectory
+// (the scenario tests' bound is 0.15 m)
+constexpr double kLargeTrackingError = 0.5;
+
 CameraSpec ParseCamera(const std::string& name) {
   if (name == "overview") return {CameraKind::kOverview, ""};
   if (name == "top") return {CameraKind::kTop, ""};
@@ -115,6 +119,9 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
     progress.emplace(&pictures, err);
     parts.observers.push_back(&*progress);
   }
+  if (const std::string warning = LimitsWarning(setup); !warning.empty()) {
+    err << "aerobox: warning: " << warning << "\n";
+  }
   FlightSetup recorded = setup;
   recorded.planning.rrt.record_tree = options.show_tree;
   MissionResult result;
@@ -167,6 +174,16 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
     return finish(kExitNoTrajectory);
   }
   const FlightResult& flight = result.flight;
+  // a flight that reached the goal far from its trajectory did not fly the trajectory
+  std::string tracking_note;
+  if (flight.max_error > kLargeTrackingError) {
+    tracking_note =
+        "the vehicle was up to " + FormatNumber(std::round(flight.max_error * 100) / 100) +
+        " m off its trajectory: the limits (" + FormatNumber(setup.planning.trajectory.max_speed) +
+        " m/s, " + FormatNumber(setup.planning.trajectory.max_accel) +
+        " m/s^2) ask more than it can follow";
+  }
+  summary.Add("tracking_warning", tracking_note);
   summary.Add("flight_status", ToString(flight.status))
       .Add("flight_time_s", flight.time)
       .Add("flight_wall_time_s", result.flight_wall_time)
@@ -197,10 +214,16 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
         << result.flight_wall_time << " s wall)";
   if (!flight.obstacle.empty()) table << ", hit " << flight.obstacle;
   if (!flight.message.empty()) table << ": " << flight.message;
-  table << "\n  tracking    RMS " << flight.rms_error << " m, max " << flight.max_error
-        << " m; min clearance ";
+  // tracking errors of a millimetre or less: three significant digits, not "0.000 m"
+  const auto metres = [](double value) {
+    std::ostringstream text;
+    text << std::setprecision(3) << value << " m";
+    return text.str();
+  };
+  table << "\n  tracking    RMS " << metres(flight.rms_error) << ", max "
+        << metres(flight.max_error) << "; min clearance ";
   if (std::isfinite(flight.min_clearance)) {
-    table << flight.min_clearance << " m\n";
+    table << metres(flight.min_clearance) << "\n";
   } else {
     table << "none (no obstacles)\n";
   }
@@ -209,6 +232,7 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
         << (options.video ? ", video.mp4 (" + std::to_string(pictures.video_frames()) + " frames)"
                           : std::string())
         << "\n";
+  if (!tracking_note.empty()) table << "  warning     " << tracking_note << "\n";
   out << table.str();
   return finish(result.status == MissionStatus::kReachedGoal ? kExitReachedGoal
                                                              : kExitFlightFailed);

@@ -17,10 +17,10 @@ namespace {
 constexpr double kTreeIntro = 3.0;        // [s] of video in which the RRT* tree grows
 constexpr size_t kTelemetryBlock = 1000;  // rows (4 s of flight at 250 Hz) appended at once
 
-std::string Hud(double t, const State& state, const char* status) {
+std::string Hud(double t, const State& state, double floor, const char* status) {
   std::ostringstream text;
   text << std::fixed << std::setprecision(1) << "t " << t << " s   speed " << state.v_W.norm()
-       << " m/s   altitude " << state.p_W.z() << " m   " << status;
+       << " m/s   height " << state.p_W.z() - floor << " m above the floor   " << status;
   return text.str();
 }
 
@@ -155,7 +155,7 @@ void RenderOutputs::OnSample(const TelemetrySample& s) {
   const bool png_due = options_.frames_every > 0 && s.t + 1e-9 >= next_png_;
   const bool video_due = video_ && s.t + 1e-9 >= next_frame_;
   if (!png_due && !video_due) return;
-  Frame(Hud(s.t, s.state, "flying"), options_.camera, overlay_);
+  Frame(Hud(s.t, s.state, setup_.map.bounds.min.z(), "flying"), options_.camera, overlay_);
   if (png_due) {
     char name[32];
     std::snprintf(name, sizeof(name), "frame_%06d.png", png_frames_++);
@@ -171,8 +171,8 @@ void RenderOutputs::OnSample(const TelemetrySample& s) {
 void RenderOutputs::OnFlightEnd(const Simulation& sim, const FlightResult& result) {
   if (video_) video_->Finish();
   // overview.png: the map, the path, the trajectory and the flown trail in one picture
-  Frame(Hud(result.time, sim.VehicleState(), ToString(result.status)), {CameraKind::kOverview, ""},
-        overlay_);
+  Frame(Hud(result.time, sim.VehicleState(), setup_.map.bounds.min.z(), ToString(result.status)),
+        {CameraKind::kOverview, ""}, overlay_);
   WriteFileAtomically((fs::path(folder_) / "overview.png").string(), EncodePng(image_));
 }
 

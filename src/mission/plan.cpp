@@ -102,6 +102,26 @@ std::pair<Endpoint, Endpoint> ResolveEndpoints(const Map& map, const CollisionWo
           Resolve(map, world, touching, goal, "goal", goal_where)};
 }
 
+double ReachableAcceleration(const FlightSetup& setup) {
+  const QuadParams& v = setup.vehicle;
+  const double thrust = kNumRotors * v.MaxRotorThrust() / v.mass;  // [m/s^2] straight up
+  const double tilt = setup.controller.kind == "se3" ? setup.controller.se3.max_tilt
+                                                     : setup.controller.cascade.max_tilt;
+  const double horizontal = std::min(
+      kGravity * std::tan(tilt), std::sqrt(std::max(0.0, thrust * thrust - kGravity * kGravity)));
+  return std::min(horizontal, thrust - kGravity);
+}
+
+std::string LimitsWarning(const FlightSetup& setup) {
+  const double reachable = ReachableAcceleration(setup);
+  const double asked = setup.planning.trajectory.max_accel;
+  if (asked <= reachable) return "";
+  return "the trajectory may accelerate at " + FormatNumber(asked) + " m/s^2, but this vehicle " +
+         "reaches about " + FormatNumber(std::floor(reachable * 10) / 10) +
+         " m/s^2 (its tilt limit and thrust); expect it to lag behind (--max-accel " +
+         FormatNumber(std::floor(reachable * 10) / 10) + " is reachable)";
+}
+
 std::string DescribeMoves(const Endpoint& start, const Endpoint& goal) {
   std::string text;
   for (const Endpoint* e : {&start, &goal}) {

@@ -35,6 +35,14 @@ std::pair<Endpoint, Endpoint> ResolveEndpoints(const Map& map, const CollisionWo
                                                const SourceLocation& start_where = {},
                                                const SourceLocation& goal_where = {});
 
+// The largest acceleration the vehicle can follow [m/s^2]: horizontally what the tilt limit
+// and the rotors' thrust allow, vertically what the thrust leaves above gravity.
+double ReachableAcceleration(const FlightSetup& setup);
+
+// A warning in words when the trajectory's limits ask more than the vehicle can give (""
+// otherwise).
+std::string LimitsWarning(const FlightSetup& setup);
+
 // One line per moved endpoint: "start moved 0.125 m off the bounds/floor: a -> b" ("" when
 // neither moved).
 std::string DescribeMoves(const Endpoint& start, const Endpoint& goal);

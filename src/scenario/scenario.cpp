@@ -599,9 +599,20 @@ FlightSetup LoadFlightSetup(const std::string& path, const SetupOverrides& overr
   }
 
   std::optional<StartGoal> side_file;
-  const fs::path side_path =
-      fs::path(map_path).parent_path() / (fs::path(map_path).stem().string() + ".startgoal.txt");
+  // the start and goal beside the map: "<map stem>.startgoal.txt", or RBE595's own layout,
+  // maps/mapN.txt with startandgoal/mapN.txt (beside maps/, or inside the map's folder)
+  const fs::path map_folder = fs::path(map_path).parent_path();
+  const std::string stem = fs::path(map_path).stem().string();
+  fs::path side_path = map_folder / (stem + ".startgoal.txt");
   std::error_code ec;
+  for (const fs::path& candidate : {map_folder / (stem + ".startgoal.txt"),
+                                    map_folder / ".." / "startandgoal" / (stem + ".txt"),
+                                    map_folder / "startandgoal" / (stem + ".txt")}) {
+    if (fs::is_regular_file(candidate, ec)) {
+      side_path = candidate.lexically_normal();
+      break;
+    }
+  }
   if (fs::is_regular_file(side_path, ec)) {
     std::istringstream text(ReadTextFile(side_path.string()));
     side_file = ReadStartGoal(text, side_path.string());

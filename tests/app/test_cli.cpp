@@ -395,3 +395,23 @@ TEST_CASE("fly --show-tree: 3 s of the tree growing open the video, and --trajec
 }
 
 }  // namespace aerobox
+
+namespace aerobox {
+
+TEST_CASE("limits the vehicle cannot follow are said before the flight and in the verdict") {
+  const std::string maze = (testing::SourceDir() / "scenes/maze/scenario.toml").string();
+  const testing::TempDir dir;
+  const testing::CliRun run =
+      testing::RunAerobox({"fly", maze, "--no-video", "--quiet", "--out",
+                           (dir.path() / "out").string(), "--max-speed", "8", "--max-accel", "10"});
+  CAPTURE(run.out);
+  // a Tello tilts at most 0.6 rad: g tan(0.6) = 6.7 m/s^2 horizontally
+  CHECK(run.err.find("aerobox: warning: the trajectory may accelerate at 10 m/s^2, but this "
+                     "vehicle reaches about 6.7 m/s^2") != std::string::npos);
+  const nlohmann::json summary = testing::ReadSummary(dir.path() / "out" / "summary.json");
+  CHECK(summary["tracking_warning"].get<std::string>().find("off its trajectory") !=
+        std::string::npos);
+  CHECK(run.out.find("  warning     the vehicle was up to") != std::string::npos);
+}
+
+}  // namespace aerobox

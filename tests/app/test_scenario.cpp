@@ -135,6 +135,13 @@ TEST_CASE("start and goal: command line, then scenario, then map, then the start
   CHECK(setup.start_origin == "start/goal file");
   CHECK(setup.goal->isApprox(Vec3(4, 4, 1)));
 
+  // RBE595's own layout: maps/mapN.txt and startandgoal/mapN.txt
+  const std::string rbe = dir.Write("rbe/maps/map7.txt", "boundary 0 0 0 5 5 2\n");
+  dir.Write("rbe/startandgoal/map7.txt", "start: (1, 1, 1)\ngoal: (4, 3, 1)\n");
+  setup = LoadFlightSetup(rbe, {});
+  CHECK(setup.start_origin == "start/goal file");
+  CHECK(setup.goal->isApprox(Vec3(4, 3, 1)));
+
   // nothing anywhere: the vehicle rests on the floor at the default start; no goal
   const std::string bare = dir.Write("bare.txt", "boundary 0 0 0 5 5 2\n");
   setup = LoadFlightSetup(bare, {});
