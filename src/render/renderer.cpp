@@ -37,8 +37,10 @@ struct Renderer::Impl {
   // the chase camera's filtered state
   bool chase_started = false;
   Vec3 chase_lookat = Vec3::Zero();
-  double chase_azimuth = 0.0;  // [deg]
-  double chase_time = 0.0;     // simulation time of the last chase frame [s]
+  double chase_azimuth = 0.0;        // [deg]
+  double chase_time = 0.0;           // simulation time of the last chase frame [s]
+  double last_chase_distance = 0.0;  // [m], after pulling in
+  int vehicle_body = -1;
 
   void AddLine(const Vec3& a, const Vec3& b, const float rgba[4], double width) {
     if (scene.ngeom >= scene.maxgeom) return;
@@ -90,7 +92,8 @@ struct Renderer::Impl {
     const double scale = std::max(0.05, 0.01 * sim->model()->stat.extent);  // marker size [m]
     static const float kPath[4] = {0.95f, 0.75f, 0.1f, 1.0f};
     static const float kTrail[4] = {0.1f, 0.1f, 0.1f, 1.0f};
-    static const float kStart[4] = {0.1f, 0.8f, 0.2f, 0.9f};
+    // the start marker is see-through: the vehicle sits in it at the start
+    static const float kStart[4] = {0.1f, 0.8f, 0.2f, 0.35f};
     static const float kGoal[4] = {0.9f, 0.15f, 0.1f, 0.9f};
     static const float kTree[4] = {0.35f, 0.55f, 0.35f, 0.6f};
     const size_t shown = std::min(overlay.tree_shown, overlay.tree.size());
@@ -110,6 +113,25 @@ struct Renderer::Impl {
     AddPolyline(overlay.trail, kTrail, 2.0);
     if (overlay.start) AddSphere(*overlay.start, scale, kStart);
     if (overlay.goal) AddSphere(*overlay.goal, scale, kGoal);
+  }
+
+  // The chase camera's distance: pulled in along the line of sight when a map box (geom
+  // group 0) stands between the vehicle and the camera, so the view is never a wall's inside.
+  double ChaseDistance(double azimuth_deg, double elevation_deg) const {
+    const double az = azimuth_deg * M_PI / 180.0;
+    const double el = elevation_deg * M_PI / 180.0;
+    // a free camera looks along (cos el cos az, cos el sin az, sin el) at `lookat`
+    const mjtNum back[3] = {-std::cos(el) * std::cos(az), -std::cos(el) * std::sin(az),
+                            -std::sin(el)};
+    const mjtNum from[3] = {chase_lookat.x(), chase_lookat.y(), chase_lookat.z()};
+    const mjtByte groups[mjNGROUP] = {1, 0, 0, 0, 0, 0};
+    int geom = -1;
+    const mjtNum hit =
+        mj_ray(sim->model(), sim->data(), from, back, groups, 1, vehicle_body, &geom);
+    constexpr double kGap = 0.05;     // [m] kept in front of the wall
+    constexpr double kClosest = 0.2;  // [m] from the vehicle, at the nearest
+    if (hit < 0 || hit >= settings.chase_distance + kGap) return settings.chase_distance;
+    return std::max(kClosest, hit - kGap);
   }
 
   mjvCamera Camera(const CameraSpec& spec) {
@@ -161,7 +183,8 @@ struct Renderer::Impl {
         for (int k = 0; k < 3; ++k) camera.lookat[k] = chase_lookat[k];
         camera.azimuth = chase_azimuth;
         camera.elevation = -22.0;
-        camera.distance = settings.chase_distance;
+        camera.distance = ChaseDistance(camera.azimuth, camera.elevation);
+        last_chase_distance = camera.distance;
         break;
       }
     }
@@ -183,6 +206,7 @@ Renderer::Renderer(Simulation* sim, const RenderSettings& settings)
   }
   impl_->sim = sim;
   impl_->settings = settings;
+  impl_->vehicle_body = mj_name2id(m, mjOBJ_BODY, model_names::kBody);
   impl_->context = std::make_unique<OffscreenContext>(settings.width, settings.height);
   // multisampling, the shadow map's size and the off-screen buffer's are read from the model
   // when the GL context is made, and only then: they are set for this renderer and put back
@@ -225,6 +249,7 @@ Renderer::~Renderer() {
 void Renderer::ReleaseFromThread() { OffscreenContext::ReleaseCurrent(); }
 
 int Renderer::width() const { return impl_->settings.width; }
+double Renderer::last_chase_distance() const { return impl_->last_chase_distance; }
 int Renderer::height() const { return impl_->settings.height; }
 
 void Renderer::Render(const CameraSpec& spec, const Overlay& overlay, Image* out) {

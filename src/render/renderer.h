@@ -81,6 +81,9 @@ class Renderer {
 
   int width() const;
   int height() const;
+  // The chase camera's distance to the vehicle in the last chase frame [m]: the settings', or
+  // less where a box stood in the way.
+  double last_chase_distance() const;
 
  private:
   struct Impl;

@@ -192,3 +192,24 @@ TEST_CASE("a video whose final rename fails throws once and frees everything onc
 }
 
 }  // namespace aerobox
+
+namespace aerobox {
+
+TEST_CASE("the chase camera moves in front of a box that stands between it and the vehicle") {
+  // the vehicle 0.5 m in front of the block's far face, heading +x: the camera, 1.4 m behind,
+  // would sit inside the block
+  Simulation blocked = SmallScene(Vec3(3.5, 2.75, 0.75));
+  Renderer renderer(&blocked, RenderSettings(160, 120, Quality::kFast));
+  Image image;
+  renderer.Render(CameraSpec{CameraKind::kChase, ""}, Overlay(), &image);
+  // along the line of sight the face is 0.5 m / cos(22 deg) = 0.54 m back; 5 cm in front of it
+  CHECK(renderer.last_chase_distance() ==
+        doctest::Approx(0.5 / std::cos(22 * M_PI / 180) - 0.05).epsilon(0.02));
+  // in the open the camera keeps its distance
+  Simulation open = SmallScene(Vec3(1.5, 1, 1));
+  Renderer free_view(&open, RenderSettings(160, 120, Quality::kFast));
+  free_view.Render(CameraSpec{CameraKind::kChase, ""}, Overlay(), &image);
+  CHECK(free_view.last_chase_distance() == doctest::Approx(RenderSettings().chase_distance));
+}
+
+}  // namespace aerobox
