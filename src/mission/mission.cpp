@@ -47,9 +47,10 @@ MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
         Simulation::FromXml(SceneMjcfFor(setup, kept), setup.name + " (scene)"));
     for (MissionObserver* observer : parts.observers) observer->OnScene(*sim, kept);
   };
-  const bool city = IsCityScale(setup.map);
+  // a city, or any map with many boxes: the scene keeps the boxes near the route only
+  const bool cull = IsCityScale(setup.map) || setup.map.boxes.size() > kCullAboveBoxes;
   std::future<void> scene;
-  if (!city) scene = std::async(std::launch::async, load_scene, std::vector<bool>());
+  if (!cull) scene = std::async(std::launch::async, load_scene, std::vector<bool>());
 
   // plan and solve; the scene thread is joined on every way out
   MissionResult result;
@@ -71,7 +72,7 @@ MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
     return result;
   }
   const PiecewiseTrajectory& trajectory = plan.trajectory->trajectory;
-  if (city) {
+  if (cull) {
     // MuJoCo 2.2 tests the vehicle against every geom of the world body at each step: 3845
     // buildings make a step 60 times dearer. The flight is lost (fly-away) once it is
     // flyaway_distance from its setpoint, so buildings farther than kCityRouteMargin from the
@@ -79,7 +80,7 @@ MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
     // against every box.
     if (!(setup.flight.flyaway_distance < kCityRouteMargin)) {
       throw std::invalid_argument("FlightParams.flyaway_distance must stay below " +
-                                  std::to_string(kCityRouteMargin) + " m in a city");
+                                  std::to_string(kCityRouteMargin) + " m in a large map");
     }
     load_scene(RouteBoxes(setup.map, Route(setup, trajectory), kCityRouteMargin));
   }

@@ -22,9 +22,9 @@ class MissionObserver {
  public:
   virtual ~MissionObserver() = default;
   // The scene is loaded. A small map's scene does not depend on the plan, so this runs on a
-  // second thread while the planner works (it must touch nothing else); a city's scene keeps
-  // only the boxes near the route (`kept`, one flag per map box; empty: all), so it comes
-  // after the plan, on the calling thread.
+  // second thread while the planner works (it must touch nothing else); the scene of a city or
+  // of a map with many boxes keeps only the boxes near the route (`kept`, one flag per map box;
+  // empty: all), so it comes after the plan, on the calling thread.
   virtual void OnScene(Simulation&, const std::vector<bool>& /*kept*/) {}
   // The path and the trajectory, or the status that stopped them.
   virtual void OnPlan(const PlanOutcome&) {}
@@ -53,8 +53,10 @@ struct MissionParts {
 };
 
 // Buildings (boxes) farther than this from a city flight's trajectory are left out of its
-// scene [m]: see RunMission.
+// scene [m]: see RunMission. The same holds for any map with more than kCullAboveBoxes boxes
+// (a 5000-tree forest costs MuJoCo as much as the city).
 inline constexpr double kCityRouteMargin = 25.0;
+inline constexpr size_t kCullAboveBoxes = 500;
 
 // Plans, solves, loads the scene, places the vehicle and flies. Throws InputError for unusable
 // endpoints and std::invalid_argument for bad settings; a missing path, trajectory or a failed

@@ -128,8 +128,12 @@ std::string DescribeMoves(const Endpoint& start, const Endpoint& goal) {
     if (!(e->moved > 0)) continue;
     char moved[32];
     std::snprintf(moved, sizeof(moved), "%.3f", e->moved);
+    // to the millimetre: 0.65, not -0.6499999999999999
+    const auto point = [](const Vec3& p) {
+      return FormatVector((p * 1000).array().round() / 1000, ", ");
+    };
     text += std::string(e == &start ? "start" : "goal") + " moved " + moved + " m " + e->why +
-            ": " + FormatVector(e->requested, ", ") + " -> " + FormatVector(e->used, ", ") + "\n";
+            ": " + point(e->requested) + " -> " + point(e->used) + "\n";
   }
   return text;
 }

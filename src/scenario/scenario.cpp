@@ -287,94 +287,64 @@ void ReadController(const toml::table& table, const std::string& file, int table
   PositionControlParams& cascade = config->cascade;
   Se3Params& se3 = config->se3;
   InnerLoopParams& inner = config->inner;
+  // every key but `kind`: gains (one number or three, >= 0) and bounded numbers
+  const std::pair<const char*, Vec3*> gains[] = {
+      {"position_gain", &cascade.position_gain},
+      {"velocity_gain", &cascade.velocity_gain},
+      {"velocity_integral", &cascade.velocity_integral},
+      {"velocity_derivative", &cascade.velocity_derivative},
+      {"velocity_integral_limit", &cascade.integral_limit},
+      {"se3_position_gain", &se3.position_gain},
+      {"se3_velocity_gain", &se3.velocity_gain},
+      {"se3_attitude_gain", &se3.attitude_gain},
+      {"se3_rate_gain", &se3.rate_gain},
+      {"attitude_gain", &inner.attitude.gain},
+      {"max_rate", &inner.attitude.max_rate},
+      {"rate_gain", &inner.rate.gain},
+      {"rate_integral", &inner.rate.integral},
+      {"rate_derivative", &inner.rate.derivative},
+      {"rate_integral_limit", &inner.rate.integral_limit}};
+  struct Bounded {
+    const char* key;
+    double* target;
+    double low, high;
+  };
+  const Bounded numbers[] = {{"rate", &config->rate, 1, 1000},
+                             {"max_speed_horizontal", &cascade.max_speed_horizontal, 0.01, 100},
+                             {"max_speed_vertical", &cascade.max_speed_vertical, 0.01, 100},
+                             {"max_accel_horizontal", &cascade.max_accel_horizontal, 0.01, 100},
+                             {"max_accel_vertical", &cascade.max_accel_vertical, 0.01, 100},
+                             {"max_tilt", &cascade.max_tilt, 0.01, 1.5},
+                             {"min_thrust_fraction", &cascade.min_thrust_fraction, 0.01, 0.99},
+                             {"yaw_weight", &inner.attitude.yaw_weight, 0.01, 1}};
   for (const auto& [key, node] : table) {
     const std::string name(key.str());
     const std::string field = "controller." + name;
-    const auto gain = [&](Vec3* target) { *target = Vector(node, file, field, 0, 1e5); };
-    const auto number = [&](double* target, double low, double high) {
-      *target = Number(node, file, field, low, high);
-    };
     if (name == "kind") {
       config->kind = Text(node, file, field);
       if (Controllers().Find(config->kind) == nullptr) {
         throw InputError({file, LineOf(node)}, field,
                          "expected " + Controllers().NameList() + ", got \"" + config->kind + "\"");
       }
-    } else if (name == "rate") {
-      number(&config->rate, 1, 1000);
-    } else if (name == "position_gain") {
-      gain(&cascade.position_gain);
-    } else if (name == "velocity_gain") {
-      gain(&cascade.velocity_gain);
-    } else if (name == "velocity_integral") {
-      gain(&cascade.velocity_integral);
-    } else if (name == "velocity_derivative") {
-      gain(&cascade.velocity_derivative);
-    } else if (name == "velocity_integral_limit") {
-      gain(&cascade.integral_limit);
-    } else if (name == "max_speed_horizontal") {
-      number(&cascade.max_speed_horizontal, 0.01, 100);
-    } else if (name == "max_speed_vertical") {
-      number(&cascade.max_speed_vertical, 0.01, 100);
-    } else if (name == "max_accel_horizontal") {
-      number(&cascade.max_accel_horizontal, 0.01, 100);
-    } else if (name == "max_accel_vertical") {
-      number(&cascade.max_accel_vertical, 0.01, 100);
-    } else if (name == "max_tilt") {
-      number(&cascade.max_tilt, 0.01, 1.5);
-      se3.max_tilt = cascade.max_tilt;
-    } else if (name == "min_thrust_fraction") {
-      number(&cascade.min_thrust_fraction, 0.01, 0.99);
-    } else if (name == "se3_position_gain") {
-      gain(&se3.position_gain);
-    } else if (name == "se3_velocity_gain") {
-      gain(&se3.velocity_gain);
-    } else if (name == "se3_attitude_gain") {
-      gain(&se3.attitude_gain);
-    } else if (name == "se3_rate_gain") {
-      gain(&se3.rate_gain);
-    } else if (name == "attitude_gain") {
-      gain(&inner.attitude.gain);
-    } else if (name == "max_rate") {
-      gain(&inner.attitude.max_rate);
-    } else if (name == "yaw_weight") {
-      number(&inner.attitude.yaw_weight, 0.01, 1);
-    } else if (name == "rate_gain") {
-      gain(&inner.rate.gain);
-    } else if (name == "rate_integral") {
-      gain(&inner.rate.integral);
-    } else if (name == "rate_derivative") {
-      gain(&inner.rate.derivative);
-    } else if (name == "rate_integral_limit") {
-      gain(&inner.rate.integral_limit);
-    } else {
-      throw InputError({file, LineOf(node)}, field,
-                       "unknown key (expected " +
-                           KeyList({"kind",
-                                    "rate",
-                                    "position_gain",
-                                    "velocity_gain",
-                                    "velocity_integral",
-                                    "velocity_derivative",
-                                    "velocity_integral_limit",
-                                    "max_speed_horizontal",
-                                    "max_speed_vertical",
-                                    "max_accel_horizontal",
-                                    "max_accel_vertical",
-                                    "max_tilt",
-                                    "min_thrust_fraction",
-                                    "se3_position_gain",
-                                    "se3_velocity_gain",
-                                    "se3_attitude_gain",
-                                    "se3_rate_gain",
-                                    "attitude_gain",
-                                    "max_rate",
-                                    "yaw_weight",
-                                    "rate_gain",
-                                    "rate_integral",
-                                    "rate_derivative",
-                                    "rate_integral_limit"}) +
-                           ")");
+      continue;
+    }
+    bool known = false;
+    for (const auto& [gain_key, target] : gains) {
+      if (name != gain_key) continue;
+      *target = Vector(node, file, field, 0, 1e5);
+      known = true;
+    }
+    for (const Bounded& number : numbers) {
+      if (name != number.key) continue;
+      *number.target = Number(node, file, field, number.low, number.high);
+      known = true;
+    }
+    if (name == "max_tilt") se3.max_tilt = cascade.max_tilt;  // one tilt limit for both
+    if (!known) {
+      std::string keys = "kind";
+      for (const auto& gain : gains) keys += std::string(", ") + gain.first;
+      for (const Bounded& number : numbers) keys += std::string(", ") + number.key;
+      throw InputError({file, LineOf(node)}, field, "unknown key (expected " + keys + ")");
     }
   }
   // the rate must divide the 1 kHz physics rate

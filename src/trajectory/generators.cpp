@@ -56,9 +56,7 @@ class BaselineGenerator : public TrajectoryGenerator {
     result.corridors.assign(result.trajectory.segments().size(), std::nullopt);
     result.stats.solve_time =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-    result.stats.max_speed = result.trajectory.MaxNorm(kVelocity, params_.check_step);
-    result.stats.max_accel = result.trajectory.MaxNorm(kAcceleration, params_.check_step);
-    result.stats.snap_cost = result.trajectory.SnapCost();
+    MeasureTrajectory(params_, &result);
     result.stats.solver_message = ToString(method_);
     return result;
   }
@@ -86,10 +84,7 @@ class GivenGenerator : public TrajectoryGenerator {
         hit ? "the given trajectory leaves free space at t = " + FormatNumber(*hit) + " s"
             : "given";
     result.stats.segments = static_cast<int>(result.trajectory.segments().size());
-    result.stats.duration = result.trajectory.duration();
-    result.stats.max_speed = result.trajectory.MaxNorm(kVelocity, params_.check_step);
-    result.stats.max_accel = result.trajectory.MaxNorm(kAcceleration, params_.check_step);
-    result.stats.snap_cost = result.trajectory.SnapCost();
+    MeasureTrajectory(params_, &result);
     result.stats.solve_time =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
     return result;

@@ -98,6 +98,14 @@ const char* ToString(TrajectoryStatus status) {
   return "?";
 }
 
+void MeasureTrajectory(const TrajectoryParams& params, TrajectoryResult* result) {
+  if (result->trajectory.empty()) return;
+  result->stats.duration = result->trajectory.duration();
+  result->stats.max_speed = result->trajectory.MaxNorm(kVelocity, params.check_step);
+  result->stats.max_accel = result->trajectory.MaxNorm(kAcceleration, params.check_step);
+  result->stats.snap_cost = result->trajectory.SnapCost();
+}
+
 std::optional<double> FirstCollisionTime(const PiecewiseTrajectory& trajectory,
                                          const TrajectoryWorld& world, double step) {
   const double duration = trajectory.duration();
@@ -185,12 +193,7 @@ TrajectoryResult GenerateTrajectory(const std::vector<Vec3>& path, const Traject
   }
 
   result.stats.segments = static_cast<int>(result.waypoints.size()) - 1;
-  if (!result.trajectory.empty()) {
-    result.stats.duration = result.trajectory.duration();
-    result.stats.max_speed = result.trajectory.MaxNorm(kVelocity, params.check_step);
-    result.stats.max_accel = result.trajectory.MaxNorm(kAcceleration, params.check_step);
-    result.stats.snap_cost = result.trajectory.SnapCost();
-  }
+  MeasureTrajectory(params, &result);
   result.stats.solve_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   return result;

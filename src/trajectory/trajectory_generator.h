@@ -74,6 +74,10 @@ struct TrajectoryResult {
 TrajectoryResult GenerateTrajectory(const std::vector<Vec3>& path, const TrajectoryWorld& world,
                                     const TrajectoryParams& params);
 
+// Fills result->stats' duration, sampled top speed and acceleration (every check_step) and snap
+// cost from result->trajectory (left as they are when it is empty).
+void MeasureTrajectory(const TrajectoryParams& params, TrajectoryResult* result);
+
 // Where the trajectory, sampled every `step` seconds, first leaves free space: the time [s],
 // or nothing when it stays free.
 std::optional<double> FirstCollisionTime(const PiecewiseTrajectory& trajectory,

@@ -269,3 +269,43 @@ TEST_CASE("a MuJoCo warning ends the flight with its own status") {
 }
 
 }  // namespace aerobox
+
+namespace aerobox {
+
+TEST_CASE("a map with many boxes keeps only those near the route in its scene, as a city does") {
+  // a 40 x 40 m forest of 900 trees, 1.3 m apart: far more than kCullAboveBoxes
+  Map map;
+  map.name = "forest";
+  map.source = "forest.txt";
+  map.bounds = {Vec3(0, 0, 0), Vec3(40, 40, 4)};
+  for (int i = 0; i < 30; ++i) {
+    for (int j = 0; j < 30; ++j) {
+      const Vec3 c(1.5 + 1.3 * i, 1.5 + 1.3 * j, 2);
+      map.boxes.push_back({{c - Vec3(0.15, 0.15, 2), c + Vec3(0.15, 0.15, 2)},
+                           Vec3(0, 0.6, 0),
+                           "tree_" + std::to_string(30 * i + j),
+                           30 * i + j + 2});
+    }
+  }
+  FlightSetup setup;
+  setup.name = "forest";
+  setup.map = map;
+  setup.start = Vec3(0.5, 0.5, 1);
+  setup.goal = Vec3(8, 1.2, 1);
+  struct Scene : MissionObserver {
+    size_t kept = 0, flags = 0;
+    void OnScene(Simulation&, const std::vector<bool>& k) override {
+      flags = k.size();
+      kept = static_cast<size_t>(std::count(k.begin(), k.end(), true));
+    }
+  } scene;
+  MissionParts parts;
+  parts.observers = {&scene};
+  const MissionResult result = RunMission(setup, parts);
+  CHECK(result.status == MissionStatus::kReachedGoal);
+  CHECK(scene.flags == map.boxes.size());
+  CHECK(scene.kept > 0);
+  CHECK(scene.kept < map.boxes.size());  // the trees far from the route are scenery
+}
+
+}  // namespace aerobox
