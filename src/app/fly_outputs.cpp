@@ -19,8 +19,8 @@ constexpr size_t kTelemetryBlock = 1000;  // rows (4 s of flight at 250 Hz) appe
 
 std::string Hud(double t, const State& state, double floor, const char* status) {
   std::ostringstream text;
-  text << std::fixed << std::setprecision(1) << "t " << t << " s   speed " << state.v_W.norm()
-       << " m/s   height " << state.p_W.z() - floor << " m above the floor   " << status;
+  text << std::fixed << std::setprecision(1) << "t " << t << " s  " << state.v_W.norm() << " m/s  "
+       << state.p_W.z() - floor << " m above the floor  " << status;
   return text.str();
 }
 
@@ -170,9 +170,15 @@ void RenderOutputs::OnSample(const TelemetrySample& s) {
 
 void RenderOutputs::OnFlightEnd(const Simulation& sim, const FlightResult& result) {
   if (video_) video_->Finish();
-  // overview.png: the map, the path, the trajectory and the flown trail in one picture
+  // overview.png: the map, the path, the trajectory and the flown trail in one picture, with
+  // the map from above in a corner and what the lines mean
+  Overlay overview = overlay_;
+  overview.top_inset = true;
+  overview.legend =
+      "yellow: path   blue-red: trajectory, slow-fast\n"
+      "black: flown   green: start   red: goal   inset: from above";
   Frame(Hud(result.time, sim.VehicleState(), setup_.map.bounds.min.z(), ToString(result.status)),
-        {CameraKind::kOverview, ""}, overlay_);
+        {CameraKind::kOverview, ""}, overview);
   WriteFileAtomically((fs::path(folder_) / "overview.png").string(), EncodePng(image_));
 }
 

@@ -262,6 +262,25 @@ void Renderer::Render(const CameraSpec& spec, const Overlay& overlay, Image* out
   r.AddOverlay(overlay);
   const mjrRect viewport = {0, 0, r.settings.width, r.settings.height};
   mjr_render(viewport, &r.scene, &r.gl);
+  if (overlay.top_inset) {
+    // the same scene from above, in the top-right corner (MuJoCo's rectangles start at the
+    // bottom left)
+    mjvCamera top = r.Camera({CameraKind::kTop, ""});
+    mjv_updateScene(r.sim->model(), r.sim->mutable_data(), &r.option, nullptr, &top, mjCAT_ALL,
+                    &r.scene);
+    r.AddScenery({CameraKind::kTop, ""}, r.settings.chase_scenery_range);
+    r.AddOverlay(overlay);
+    const int w = r.settings.width / 3;
+    const int h = r.settings.height / 3;
+    constexpr int kMargin = 4;                                   // [pixels]
+    const int below_text = overlay.text.empty() ? kMargin : 30;  // under the top line of text
+    const mjrRect inset = {r.settings.width - w - kMargin, r.settings.height - h - below_text, w,
+                           h};
+    mjr_render(inset, &r.scene, &r.gl);
+  }
+  if (!overlay.legend.empty()) {
+    mjr_overlay(mjFONT_NORMAL, mjGRID_BOTTOMLEFT, viewport, overlay.legend.c_str(), nullptr, &r.gl);
+  }
   if (!overlay.text.empty()) {
     mjr_overlay(mjFONT_NORMAL, mjGRID_TOPLEFT, viewport, overlay.text.c_str(), nullptr, &r.gl);
   }

@@ -59,6 +59,11 @@ struct Overlay {
   // `tree_shown` are drawn (at most kMaxTreeEdges of them, evenly chosen)
   std::vector<std::pair<Vec3, Vec3>> tree;
   size_t tree_shown = 0;
+  // a top-down view of the whole map in the top-right corner (a third of the picture's size),
+  // for when the main view hides the route
+  bool top_inset = false;
+  // bottom-left text, lines separated by '\n' (what the lines' colours mean)
+  std::string legend;
 };
 
 class Renderer {

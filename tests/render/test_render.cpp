@@ -213,3 +213,30 @@ TEST_CASE("the chase camera moves in front of a box that stands between it and t
 }
 
 }  // namespace aerobox
+
+namespace aerobox {
+
+TEST_CASE("the overview's top-down inset fills the top-right corner and only that") {
+  Simulation sim = SmallScene(Vec3(1, 1, 1));
+  Renderer renderer(&sim, RenderSettings(240, 180, Quality::kFast));
+  Image plain, inset;
+  Overlay overlay;
+  renderer.Render(CameraSpec{CameraKind::kOverview, ""}, overlay, &plain);
+  overlay.top_inset = true;
+  renderer.Render(CameraSpec{CameraKind::kOverview, ""}, overlay, &inset);
+  // pixels that differ, in the top-right third (rows top-down) and elsewhere
+  int corner = 0, elsewhere = 0;
+  for (int y = 0; y < 180; ++y) {
+    for (int x = 0; x < 240; ++x) {
+      const size_t i = (static_cast<size_t>(y) * 240 + x) * 3;
+      const bool differs = plain.rgb[i] != inset.rgb[i] || plain.rgb[i + 1] != inset.rgb[i + 1] ||
+                           plain.rgb[i + 2] != inset.rgb[i + 2];
+      const bool in_corner = x >= 240 - 80 - 4 && y < 60 + 4;
+      (in_corner ? corner : elsewhere) += differs;
+    }
+  }
+  CHECK(corner > 80 * 60 / 4);  // the inset draws a picture of its own there
+  CHECK(elsewhere == 0);
+}
+
+}  // namespace aerobox
