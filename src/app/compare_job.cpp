@@ -73,19 +73,11 @@ Row FlyMethod(const FlightSetup& setup, const PlanOutcome& plan, TrajectoryMetho
   Simulation sim = Simulation::FromXml(SceneMjcfFor(setup), setup.name + " (scene)");
   const QuadParams& vehicle = setup.vehicle;
   PlaceVehicleAtStart(setup.map, vehicle, setup.start, plan.start.used, &sim);
-  const FlightParams& params = setup.flight;
-  const double sample_period = 1.0 / setup.controller.rate;  // [s] between samples
   const FlightResult flight = FlyTrajectory(
-      ReferenceOf(trajectory), params, vehicle, setup.controller,
-      [&world](const Vec3& p) { return world.Clearance(p); },
-      [&](const TelemetrySample& s) {
-        const Vec4& f = s.inner.mixer.thrusts;
-        // a rotor at either end of its range: the mixer has no authority left there
-        if ((f.array() >= vehicle.MaxRotorThrust() - 1e-9).any() ||
-            (f.array() <= vehicle.MinRotorThrust() + 1e-9).any())
-          row.saturated += sample_period;
-      },
-      &sim);
+      ReferenceOf(trajectory), setup.flight, vehicle, setup.controller,
+      [&world](const Vec3& p) { return world.Clearance(p); }, {}, &sim);
+  // a rotor at either end of its range: the mixer has no authority left there
+  row.saturated = flight.saturated_time;
   row.rms = flight.rms_error;
   row.outcome = ToString(flight.status);
   if (!flight.obstacle.empty()) row.outcome += " (" + flight.obstacle + ")";

@@ -187,6 +187,11 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
   summary.Add("flight_status", ToString(flight.status))
       .Add("flight_time_s", flight.time)
       .Add("flight_wall_time_s", result.flight_wall_time)
+      .Add("distance_flown_m", flight.distance)
+      .Add("average_speed_mps", flight.AverageSpeed())
+      .Add("top_speed_mps", flight.top_speed)
+      .Add("peak_rotor_command_fraction", flight.peak_rotor_fraction)
+      .Add("rotor_saturated_s", flight.saturated_time)
       .Add("tracking_rms_m", flight.rms_error)
       .Add("tracking_max_m", flight.max_error)
       .Add("min_clearance_m", flight.min_clearance)
@@ -220,6 +225,11 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
     text << std::setprecision(3) << value << " m";
     return text.str();
   };
+  table << "\n  speed       " << std::setprecision(2) << flight.AverageSpeed()
+        << " m/s on average, " << flight.top_speed << " m/s at most; rotors at most "
+        << std::setprecision(0) << 100 * flight.peak_rotor_fraction
+        << " % of their limit, saturated " << std::setprecision(2) << flight.saturated_time << " s"
+        << std::setprecision(3);
   table << "\n  tracking    RMS " << metres(flight.rms_error) << ", max "
         << metres(flight.max_error) << "; min clearance ";
   if (std::isfinite(flight.min_clearance)) {

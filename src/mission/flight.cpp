@@ -105,6 +105,8 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
     if (!ParseNumber(*at, &nan_from)) nan_from = 0.0;
   }
 
+  const double max_thrust = loop.vehicle->MaxRotorThrust();
+  const double min_thrust = loop.vehicle->MinRotorThrust();
   ControlCommand command;
   InnerOutput inner_out;
   std::vector<double> report;
@@ -176,8 +178,18 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
       break;
     }
 
-    sim->Step(inner_out.mixer.thrusts);
+    // how hard the rotors worked, every physics step
+    const Vec4& commanded = inner_out.mixer.thrusts;
+    result.peak_rotor_fraction =
+        std::max(result.peak_rotor_fraction, commanded.maxCoeff() / max_thrust);
+    if ((commanded.array() >= max_thrust - 1e-9).any() ||
+        (commanded.array() <= min_thrust + 1e-9).any()) {
+      result.saturated_time += step;
+    }
+    result.top_speed = std::max(result.top_speed, state.v_W.norm());
+    sim->Step(commanded);
     ++result.steps;
+    result.distance += (sim->VehicleState().p_W - state.p_W).norm();
     // a warning means MuJoCo changed or distrusts the state (it resets the data after a bad
     // acceleration): nothing after it can be trusted
     result.message = sim->TakeNewWarnings();

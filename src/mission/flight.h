@@ -60,6 +60,13 @@ struct FlightResult {
   double min_clearance = 0.0;  // [m]
   long steps = 0;
   double control_rate = 0.0;  // [Hz] of the controller (and of the telemetry)
+  double distance = 0.0;      // [m] flown
+  double top_speed = 0.0;     // [m/s]
+  // the largest rotor command as a fraction of the rotor's limit, and how long any rotor was
+  // commanded at a limit (the mixer had no authority left there) [s]
+  double peak_rotor_fraction = 0.0;
+  double saturated_time = 0.0;
+  double AverageSpeed() const { return time > 0 ? distance / time : 0.0; }  // [m/s]
 };
 
 // What the vehicle follows: position and its derivatives (up to snap) at time t [s] from the

@@ -332,6 +332,19 @@ TEST_CASE("fly: plans, flies and writes path, trajectory, telemetry and summary"
   CHECK(summary["goal_requested"] == summary["goal"]);
   CHECK(summary["map"] == room);
   CHECK(summary["speed_limit_mps"] == 2.0);
+  // how fast and how hard it flew: the speed stays near the trajectory's (it tracks within
+  // centimetres), a hover takes about half of a Tello's thrust, nothing saturates at 2 m/s
+  const double top = testing::SummaryNumber(summary, "top_speed_mps");
+  CHECK(top ==
+        doctest::Approx(testing::SummaryNumber(summary, "trajectory_max_speed_mps")).epsilon(0.05));
+  CHECK(testing::SummaryNumber(summary, "average_speed_mps") ==
+        doctest::Approx(testing::SummaryNumber(summary, "distance_flown_m") /
+                        testing::SummaryNumber(summary, "flight_time_s")));
+  CHECK(testing::SummaryNumber(summary, "average_speed_mps") < top);
+  const double peak = testing::SummaryNumber(summary, "peak_rotor_command_fraction");
+  CHECK(peak > 0.45);
+  CHECK(peak < 1.0);
+  CHECK(testing::SummaryNumber(summary, "rotor_saturated_s") == 0.0);
 
   // the same seed gives byte-identical path, trajectory and telemetry
   const std::string again = (dir.path() / "again").string();
