@@ -2,10 +2,8 @@
 
 #include <unistd.h>
 
-#include <atomic>
-#include <chrono>
+#include <cmath>
 #include <filesystem>
-#include <future>
 #include <iomanip>
 #include <optional>
 #include <sstream>
@@ -16,10 +14,7 @@
 #include "app/interrupt.h"
 #include "common/number_format.h"
 #include "mission/mission.h"
-#include "mission/telemetry_table.h"
 #include "planning/path_simplify.h"
-#include "render/png.h"
-#include "render/renderer.h"
 #include "render/video_encoder.h"
 #include "scene/scene_mjcf.h"
 #include "telemetry/json_object.h"
