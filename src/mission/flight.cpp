@@ -121,27 +121,28 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
       break;
     }
 
-    // the setpoint: the reference's flat outputs, its end held after it
+    // the setpoint: the reference's flat outputs, its end held after it; the position every
+    // step (for the fly-away check), the rest when the controller runs
+    const bool control_step = k % divider == 0;
     FlatOutput setpoint;
     setpoint.p_W = reference.evaluate(std::min(t, duration), kPosition);
-    if (t < duration) {
+    if (control_step && t < duration) {
       setpoint.v_W = reference.evaluate(t, kVelocity);
       setpoint.a_W = reference.evaluate(t, kAcceleration);
       setpoint.j_W = reference.evaluate(t, kJerk);
       setpoint.s_W = reference.evaluate(t, kSnap);
-    }
-    const double speed_xy = setpoint.v_W.head<2>().norm();
-    if (params.face_travel && speed_xy > 0.2) {
-      yaw = std::atan2(setpoint.v_W.y(), setpoint.v_W.x());
-      setpoint.yaw_rate =
-          (setpoint.v_W.x() * setpoint.a_W.y() - setpoint.v_W.y() * setpoint.a_W.x()) /
-          (speed_xy * speed_xy);
+      const double speed_xy = setpoint.v_W.head<2>().norm();
+      if (params.face_travel && speed_xy > 0.2) {
+        yaw = std::atan2(setpoint.v_W.y(), setpoint.v_W.x());
+        setpoint.yaw_rate =
+            (setpoint.v_W.x() * setpoint.a_W.y() - setpoint.v_W.y() * setpoint.a_W.x()) /
+            (speed_xy * speed_xy);
+      }
     }
     setpoint.yaw = yaw;
     if (t >= nan_from) setpoint.p_W.x() = std::numeric_limits<double>::quiet_NaN();
 
     // the controller at its rate, the inner loops every step
-    const bool control_step = k % divider == 0;
     if (control_step && !controller.Update(t, state, setpoint, &command)) {
       result.status = FlightStatus::kNonFinite;
       break;
