@@ -3,6 +3,7 @@
 // product links neither Google Benchmark nor OMPL.
 #include <CLI/CLI.hpp>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -15,11 +16,42 @@
 #include "bench/solver_comparison.h"
 #include "common/error.h"
 #include "geometry/collision_world.h"
+#include "mission/mission.h"
 #include "mission/plan.h"
+#include "planning/path_simplify.h"
 #include "scenario/scenario.h"
+#include "trajectory/time_allocation.h"
 
 namespace aerobox {
 namespace {
+
+// Per map: the flown time, and the shortest time a point mass needs for the path's length
+// from rest to rest with the vehicle's top speed (8 m/s, a Tello's) and the acceleration its
+// tilt limit and thrust allow (ReachableAcceleration). Corners cost the point mass nothing, so
+// the bound is below anything a vehicle can fly; the ratio says how far from it the flight is.
+void SpeedTable(const std::string& scenes, const std::string& maps, std::ostream& out) {
+  constexpr double kTopSpeed = 8.0;  // [m/s] a Tello's specification
+  out << "| map | path [m] | flight [s] | bound [s] | flight / bound | average speed [m/s] | "
+         "top speed [m/s] | peak rotor command [% of limit] |\n|---|---|---|---|---|---|---|---|\n";
+  std::istringstream names(maps);
+  std::string name;
+  while (std::getline(names, name, ',')) {
+    const std::string scenario = (std::filesystem::path(scenes) / name / "scenario.toml").string();
+    const FlightSetup setup = LoadFlightSetup(scenario, {});
+    const MissionResult result = RunMission(setup, MissionParts());
+    if (!result.flown) {
+      out << "| " << name << " | (" << ToString(result.status) << ") | | | | | | |\n";
+      continue;
+    }
+    const double length = PathLength(result.plan.result.path);
+    const double bound = TrapezoidTime(length, kTopSpeed, ReachableAcceleration(setup));
+    out << std::fixed << std::setprecision(2) << "| " << name << " | " << length << " | "
+        << result.flight.time << " | " << bound << " | " << result.flight.time / bound << " | "
+        << result.flight.AverageSpeed() << " | " << result.flight.top_speed << " | "
+        << std::setprecision(0) << 100 * result.flight.peak_rotor_fraction << " |\n"
+        << std::defaultfloat;
+  }
+}
 
 int RunBench(const std::string& sections, const std::string& scenes, const std::string& maps,
              const std::string& city, int seeds, double seconds, std::ostream& out,
@@ -46,6 +78,11 @@ int RunBench(const std::string& sections, const std::string& scenes, const std::
         (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
     out << "## Closed loop against bare mj_step on the window scene (medians of 5 repetitions)\n\n";
     CompareClosedLoop(window, out, err);
+    out << "\n";
+  }
+  if (wanted("speed")) {
+    out << "## Flight time against a point-mass lower bound along the same path\n\n";
+    SpeedTable(scenes, maps, out);
     out << "\n";
   }
   if (wanted("city")) {
@@ -89,7 +126,7 @@ int main(int argc, char** argv) {
   int bench_seeds = 20;
   double bench_seconds = 1.0;
   app.add_option("--sections", bench_sections,
-                 "all, or some of: trajectory,flight,render,city,planning")
+                 "all, or some of: trajectory,flight,render,speed,city,planning")
       ->capture_default_str();
   app.add_option("--scenes", bench_scenes, "folder with the scenes")->capture_default_str();
   app.add_option("--maps", bench_maps, "comma-separated scene names")->capture_default_str();
