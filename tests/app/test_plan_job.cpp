@@ -289,3 +289,46 @@ TEST_CASE("small maps: every one of 20 seeds gets a trajectory (Ipopt's failures
 }
 
 }  // namespace aerobox
+
+#include "trajectory/generators.h"
+
+namespace aerobox {
+namespace {
+
+// A generator of the test's own: from rest to rest in a straight line, 1 s a metre, ignoring
+// the waypoints between (fine in an empty room).
+class StraightGenerator : public TrajectoryGenerator {
+ public:
+  TrajectoryResult Generate(const std::vector<Vec3>& path, const TrajectoryWorld&) override {
+    TrajectoryResult result;
+    const double duration = std::max(0.1, (path.back() - path.front()).norm());
+    result.trajectory = SampledTrajectory({{0.0, path.front(), Vec3::Zero(), Vec3::Zero()},
+                                           {duration, path.back(), Vec3::Zero(), Vec3::Zero()}});
+    result.waypoints = {path.front(), path.back()};
+    result.status = TrajectoryStatus::kSolved;
+    result.stats.duration = duration;
+    return result;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("a trajectory generator written outside src/ is chosen by name") {
+  if (TrajectoryGenerators().Find("test_straight") == nullptr) {
+    TrajectoryGenerators().Register("test_straight", [](const GeneratorConfig&) {
+      return std::make_unique<StraightGenerator>();
+    });
+  }
+  const testing::TempDir dir;
+  dir.Write("room.txt", "boundary 0 0 0 4 4 2\n");
+  const std::string scenario = dir.Write("room.toml",
+                                         "map = \"room.txt\"\nstart = [1, 1, 1]\ngoal = [3, 1, 1]\n"
+                                         "[trajectory]\nmethod = \"test_straight\"\n");
+  const PlanOutcome plan = PlanFlight(LoadFlightSetup(scenario, {}));
+  REQUIRE(plan.trajectory);
+  REQUIRE(plan.trajectory->status == TrajectoryStatus::kSolved);
+  CHECK(plan.trajectory->trajectory.duration() == doctest::Approx(2.0));
+  CHECK(plan.trajectory->trajectory.Evaluate3(1.0, kPosition).isApprox(Vec3(2, 1, 1), 1e-9));
+}
+
+}  // namespace aerobox
