@@ -18,6 +18,14 @@ Map WindowRoom() {
   return map;
 }
 
+// A 2 x 4 x 1 m room that a wall across it closes: no path from y < 2.4 to y > 2.6.
+Map ClosedRoom() {
+  Map map;
+  map.bounds = {Vec3(0, 0, 0), Vec3(2, 4, 1)};
+  map.boxes.push_back({{Vec3(0, 2.4, 0), Vec3(2, 2.6, 1)}, Vec3(1, 0, 0), "wall", 1});
+  return map;
+}
+
 RrtStarParams Deterministic(long iterations, std::uint64_t seed = 1) {
   RrtStarParams params;
   params.max_iterations = iterations;
@@ -106,9 +114,7 @@ TEST_CASE("the best path never gets longer with more iterations") {
 }
 
 TEST_CASE("no path: a wall closes the map, the planner says so within its budget") {
-  Map map;
-  map.bounds = {Vec3(0, 0, 0), Vec3(2, 4, 1)};
-  map.boxes.push_back({{Vec3(0, 2.4, 0), Vec3(2, 2.6, 1)}, Vec3(1, 0, 0), "wall", 1});
+  const Map map = ClosedRoom();
   const CollisionWorld world(map, CollisionParams());
   RrtStarParams params;
   params.time_budget = 0.2;
@@ -153,16 +159,13 @@ TEST_CASE("a goal in plain sight is reached in a single straight segment") {
 namespace aerobox {
 
 TEST_CASE("without a solution RRT* stops at its search budget, deterministically") {
-  // a wall closes the room: no path
-  Map map;
-  map.bounds = {Vec3(0, 0, 0), Vec3(4, 4, 2)};
-  map.boxes.push_back({{Vec3(0, 1.9, 0), Vec3(4, 2.1, 2)}, Vec3(1, 0, 0), "wall", 1});
+  const Map map = ClosedRoom();
   const CollisionWorld world(map, CollisionParams());
   RrtStarParams params;
   params.max_iterations = 10;
   params.max_search_iterations = 1500;
   params.time_budget = 60;
-  const PlanResult result = PlanRrtStar(Vec3(2, 1, 1), Vec3(2, 3, 1), world.free_bounds(),
+  const PlanResult result = PlanRrtStar(Vec3(1, 1, 0.5), Vec3(1, 3, 0.5), world.free_bounds(),
                                         testing::ValidityOf(world), params);
   CHECK(result.status == PlanStatus::kNoPathWithinBudget);
   CHECK(result.stats.iterations == 1500);
