@@ -6,10 +6,10 @@
 #include <sstream>
 
 #include "app/exit_codes.h"
-#include "app/files.h"
 #include "geometry/collision_world.h"
 #include "mission/flight.h"
 #include "mission/plan.h"
+#include "outputs/files.h"
 #include "scenario/scenario.h"
 #include "telemetry/csv_table.h"
 

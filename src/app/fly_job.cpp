@@ -9,11 +9,12 @@
 #include <sstream>
 
 #include "app/exit_codes.h"
-#include "app/files.h"
-#include "app/fly_outputs.h"
-#include "app/interrupt.h"
 #include "common/number_format.h"
 #include "mission/mission.h"
+#include "outputs/files.h"
+#include "outputs/flight_outputs.h"
+#include "outputs/interrupt.h"
+#include "outputs/summary.h"
 #include "planning/path_simplify.h"
 #include "render/video_encoder.h"
 #include "scene/scene_mjcf.h"
@@ -22,10 +23,6 @@
 namespace aerobox {
 namespace fs = std::filesystem;
 namespace {
-
-// [m] from the setpoint at worst: beyond it a flight is reported as not following its trajectory
-// (the scenario tests' bound is 0.15 m)
-constexpr double kLargeTrackingError = 0.5;
 
 CameraSpec ParseCamera(const std::string& name) {
   if (name == "overview") return {CameraKind::kOverview, ""};
@@ -72,10 +69,6 @@ void ValidateFlyOptions(const FlyOptions& options) {
 }
 
 namespace {
-
-void AddPoint(JsonObject* json, const std::string& key, const Vec3& p) {
-  json->Add(key, std::vector<double>{p.x(), p.y(), p.z()});
-}
 
 int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOptions& options,
             std::ostream& out, std::ostream& err) {
@@ -131,23 +124,9 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
 
   // summary.json and the table
   const PlanOutcome& plan = result.plan;
-  JsonObject summary;
-  summary.Add("scenario", setup.name)
-      .Add("status", ToString(result.status))
-      .Add("seed", static_cast<long long>(setup.seed))
-      .Add("map", setup.map.source)
-      .Add("vehicle", setup.vehicle_kind)
-      .Add("controller", setup.controller.kind);
-  AddPoint(&summary, "start_requested", plan.start.requested);
-  AddPoint(&summary, "start", plan.start.used);
-  AddPoint(&summary, "goal_requested", plan.goal.requested);
-  AddPoint(&summary, "goal", plan.goal.used);
-  summary.Add("planning_time_s", plan.result.stats.planning_time)
-      .Add("planner_iterations", static_cast<long long>(plan.result.stats.iterations));
   const auto finish = [&](int code) {
-    JsonObject versions;
-    versions.Add("aerobox", AEROBOX_VERSION).Add("mujoco", mj_versionString());
-    summary.Add("versions", versions);
+    const JsonObject summary =
+        RunSummary(setup, result, {every, pictures.video_frames(), options.fps});
     WriteFileAtomically((fs::path(folder) / "summary.json").string(), summary.Text());
     return code;
   };
@@ -157,46 +136,13 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
     return finish(kExitNoPath);
   }
   const TrajectoryResult& trajectory = *plan.trajectory;
-  summary.Add("path_length_m", PathLength(plan.result.path))
-      .Add("trajectory_time_s", trajectory.stats.solve_time)
-      .Add("trajectory_duration_s", trajectory.stats.duration)
-      .Add("trajectory_max_speed_mps", trajectory.stats.max_speed)
-      .Add("trajectory_max_accel_mps2", trajectory.stats.max_accel)
-      .Add("speed_limit_mps", setup.planning.trajectory.max_speed)
-      .Add("accel_limit_mps2", setup.planning.trajectory.max_accel);
   if (result.status == MissionStatus::kNoTrajectory) {
     out << "fly " << setup.name << ": no trajectory (" << trajectory.stats.solver_message << ")\n";
     return finish(kExitNoTrajectory);
   }
   const FlightResult& flight = result.flight;
   // a flight that reached the goal far from its trajectory did not fly the trajectory
-  std::string tracking_note;
-  if (flight.max_error > kLargeTrackingError) {
-    tracking_note =
-        "the vehicle was up to " + FormatNumber(std::round(flight.max_error * 100) / 100) +
-        " m off its trajectory: the limits (" + FormatNumber(setup.planning.trajectory.max_speed) +
-        " m/s, " + FormatNumber(setup.planning.trajectory.max_accel) +
-        " m/s^2) ask more than it can follow";
-  }
-  summary.Add("tracking_warning", tracking_note);
-  summary.Add("flight_status", ToString(flight.status))
-      .Add("flight_time_s", flight.time)
-      .Add("flight_wall_time_s", result.flight_wall_time)
-      .Add("distance_flown_m", flight.distance)
-      .Add("average_speed_mps", flight.AverageSpeed())
-      .Add("top_speed_mps", flight.top_speed)
-      .Add("peak_rotor_command_fraction", flight.peak_rotor_fraction)
-      .Add("rotor_saturated_s", flight.saturated_time)
-      .Add("tracking_rms_m", flight.rms_error)
-      .Add("tracking_max_m", flight.max_error)
-      .Add("min_clearance_m", flight.min_clearance)
-      .Add("collisions", flight.status == FlightStatus::kCollision ? 1 : 0)
-      .Add("collision_with", flight.obstacle)
-      .Add("simulation_warning", flight.message)
-      .Add("control_rate_hz", flight.control_rate)
-      .Add("telemetry_rate_hz", flight.control_rate / every)
-      .Add("video_frames", pictures.video_frames())
-      .Add("video_fps", options.fps);
+  const std::string tracking_note = TrackingNote(setup, flight);
 
   std::ostringstream table;
   table << std::fixed << std::setprecision(3);

@@ -360,7 +360,7 @@ TEST_CASE("fly: plans, flies and writes path, trajectory, telemetry and summary"
 
 }  // namespace aerobox
 
-#include "app/files.h"
+#include "outputs/files.h"
 
 namespace aerobox {
 

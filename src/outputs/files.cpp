@@ -1,4 +1,4 @@
-#include "app/files.h"
+#include "outputs/files.h"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -14,9 +14,9 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "app/interrupt.h"
 #include "common/error.h"
 #include "common/fault_injection.h"
+#include "outputs/interrupt.h"
 
 namespace aerobox {
 namespace fs = std::filesystem;

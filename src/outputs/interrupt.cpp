@@ -1,4 +1,4 @@
-#include "app/interrupt.h"
+#include "outputs/interrupt.h"
 
 #include <semaphore.h>
 #include <unistd.h>
@@ -10,11 +10,11 @@
 #include <set>
 #include <thread>
 
-#include "app/exit_codes.h"
-
 namespace aerobox {
 namespace {
 
+// the shell's code for an end by SIGINT (128 + 2), as app/exit_codes.h promises
+constexpr int kInterruptedExitCode = 130;
 constexpr auto kGrace = std::chrono::milliseconds(1000);  // for the cooperative stop
 
 std::atomic<bool> stop_requested{false};
@@ -50,7 +50,7 @@ void Watchdog() {
   if (write(STDERR_FILENO, kMessage, sizeof(kMessage) - 1) < 0) {
     // nothing more to say
   }
-  _exit(kExitInterrupted);
+  _exit(kInterruptedExitCode);
 }
 
 }  // namespace

@@ -1,13 +1,13 @@
-#include "app/fly_outputs.h"
+#include "outputs/flight_outputs.h"
 
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
 
-#include "app/files.h"
 #include "common/error.h"
 #include "mission/telemetry_table.h"
+#include "outputs/files.h"
 #include "render/png.h"
 
 namespace aerobox {

@@ -1,0 +1,81 @@
+#include "outputs/summary.h"
+
+#include <mujoco/mujoco.h>
+
+#include <cmath>
+
+#include "common/number_format.h"
+#include "planning/path_simplify.h"
+
+namespace aerobox {
+namespace {
+
+void AddPoint(JsonObject* json, const std::string& key, const Vec3& p) {
+  json->Add(key, std::vector<double>{p.x(), p.y(), p.z()});
+}
+
+}  // namespace
+
+std::string TrackingNote(const FlightSetup& setup, const FlightResult& flight) {
+  if (flight.max_error <= kLargeTrackingError) return "";
+  return "the vehicle was up to " + FormatNumber(std::round(flight.max_error * 100) / 100) +
+         " m off its trajectory: the limits (" + FormatNumber(setup.planning.trajectory.max_speed) +
+         " m/s, " + FormatNumber(setup.planning.trajectory.max_accel) +
+         " m/s^2) ask more than it can follow";
+}
+
+JsonObject RunSummary(const FlightSetup& setup, const MissionResult& result,
+                      const OutputCounts& counts) {
+  const PlanOutcome& plan = result.plan;
+  JsonObject summary;
+  summary.Add("scenario", setup.name)
+      .Add("status", ToString(result.status))
+      .Add("seed", static_cast<long long>(setup.seed))
+      .Add("map", setup.map.source)
+      .Add("vehicle", setup.vehicle_kind)
+      .Add("controller", setup.controller.kind);
+  AddPoint(&summary, "start_requested", plan.start.requested);
+  AddPoint(&summary, "start", plan.start.used);
+  AddPoint(&summary, "goal_requested", plan.goal.requested);
+  AddPoint(&summary, "goal", plan.goal.used);
+  summary.Add("planning_time_s", plan.result.stats.planning_time)
+      .Add("planner_iterations", static_cast<long long>(plan.result.stats.iterations));
+  if (result.status != MissionStatus::kNoPath && plan.trajectory) {
+    const TrajectoryResult& trajectory = *plan.trajectory;
+    summary.Add("path_length_m", PathLength(plan.result.path))
+        .Add("trajectory_time_s", trajectory.stats.solve_time)
+        .Add("trajectory_duration_s", trajectory.stats.duration)
+        .Add("trajectory_max_speed_mps", trajectory.stats.max_speed)
+        .Add("trajectory_max_accel_mps2", trajectory.stats.max_accel)
+        .Add("speed_limit_mps", setup.planning.trajectory.max_speed)
+        .Add("accel_limit_mps2", setup.planning.trajectory.max_accel);
+  }
+  if (result.flown) {
+    const FlightResult& flight = result.flight;
+    summary.Add("tracking_warning", TrackingNote(setup, flight));
+    summary.Add("flight_status", ToString(flight.status))
+        .Add("flight_time_s", flight.time)
+        .Add("flight_wall_time_s", result.flight_wall_time)
+        .Add("distance_flown_m", flight.distance)
+        .Add("average_speed_mps", flight.AverageSpeed())
+        .Add("top_speed_mps", flight.top_speed)
+        .Add("peak_rotor_command_fraction", flight.peak_rotor_fraction)
+        .Add("rotor_saturated_s", flight.saturated_time)
+        .Add("tracking_rms_m", flight.rms_error)
+        .Add("tracking_max_m", flight.max_error)
+        .Add("min_clearance_m", flight.min_clearance)
+        .Add("collisions", flight.status == FlightStatus::kCollision ? 1 : 0)
+        .Add("collision_with", flight.obstacle)
+        .Add("simulation_warning", flight.message)
+        .Add("control_rate_hz", flight.control_rate)
+        .Add("telemetry_rate_hz", flight.control_rate / counts.telemetry_every)
+        .Add("video_frames", counts.video_frames)
+        .Add("video_fps", counts.video_fps);
+  }
+  JsonObject versions;
+  versions.Add("aerobox", AEROBOX_VERSION).Add("mujoco", mj_versionString());
+  summary.Add("versions", versions);
+  return summary;
+}
+
+}  // namespace aerobox
