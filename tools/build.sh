@@ -7,6 +7,7 @@ build=${AEROBOX_BUILD_DIR:-$top/build}
 
 "$top/tools/setup.sh"
 if [ ! -f "$build/CMakeCache.txt" ] || [ $# -gt 0 ]; then
-  cmake -S "$top" -B "$build" -DCMAKE_BUILD_TYPE=Release "$@"
+  # Debian's python3 (with numpy), not one a version manager puts first on PATH (DESIGN.md)
+  cmake -S "$top" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPython_EXECUTABLE=/usr/bin/python3 "$@"
 fi
 cmake --build "$build" --parallel "$(nproc)"

@@ -19,6 +19,7 @@
 #include "mission/plan.h"
 #include "outputs/files.h"
 #include "outputs/interrupt.h"
+#include "python/embedded.h"
 #include "scenario/scenario.h"
 #include "scene/scene_mjcf.h"
 #include "sim/simulation.h"
@@ -360,6 +361,20 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   fly->add_option("--trajectory", trajectory_method,
                   "minsnap (default), a baseline on its waypoints and times: quintic, cubic, "
                   "septic-full; or given (the scenario's [trajectory] file)");
+  PythonModules python_modules;
+  fly->add_option("--controller", python_modules.controller,
+                  "the controller: a built-in (cascade, se3) or a Python class, file.py:Class "
+                  "(Class(quad_params).update(t, state, flat_output) -> dict, RotorPy's contract)");
+  fly->add_option("--command", python_modules.command,
+                  "which keys of a Python controller's dict fly: auto (the lowest level given), "
+                  "cmd_motor_thrusts, cmd_motor_speeds, cmd_ctbm, cmd_ctbr or cmd_ctatt")
+      ->capture_default_str();
+  fly->add_option("--trajectory-module", python_modules.trajectory,
+                  "a Python trajectory class, file.py:Class: Class(path) with update(t) -> "
+                  "flat_output and a duration [s]");
+  fly->add_option("--planner-module", python_modules.planner,
+                  "a Python planner class, file.py:Class: Class().plan(world, start, goal) -> "
+                  "(N, 3) waypoints [m]");
   fly->add_option("--frames-every", fly_options.frames_every,
                   "also write frames/frame_NNNNNN.png every this many seconds of flight");
 
@@ -448,6 +463,19 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
                              " (given needs a [trajectory] file in the scenario)");
       }
       setup.planning.trajectory_method = trajectory_method;
+    }
+    if (fly->parsed()) {
+      // a built-in controller by name; anything with a ':' is a Python class
+      if (!python_modules.controller.empty() &&
+          python_modules.controller.find(':') == std::string::npos) {
+        if (Controllers().Find(python_modules.controller) == nullptr) {
+          throw InputError({"command line", 0}, "--controller",
+                           "expected " + Controllers().NameList() + ", or file.py:Class");
+        }
+        setup.controller.kind = python_modules.controller;
+        python_modules.controller.clear();
+      }
+      UsePythonModules(python_modules, &setup);
     }
     if (scene->parsed()) return RunScene(setup, output, out);
     if (plan->parsed()) return RunPlan(setup, out_dir, out);

@@ -194,7 +194,15 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
 int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& out,
            std::ostream& err) {
   const OutputFolder folder(options.out_dir, setup.name);
-  const int code = FlyInto(folder.path(), setup, options, out, err);
+  int code = kExitUnexpected;
+  try {
+    code = FlyInto(folder.path(), setup, options, out, err);
+  } catch (...) {
+    // a run that ends in an exception (a user's Python code, an unwritable disk) leaves the
+    // folder as it found it
+    folder.RemoveWritten();
+    throw;
+  }
   // the folder holds this run's outputs only (an interrupted run keeps what it had)
   if (code != kExitInterrupted) folder.RemoveStale();
   return code;

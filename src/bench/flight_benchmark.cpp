@@ -45,9 +45,12 @@ void CompareClosedLoop(const std::string& scenario, std::ostream& out, std::ostr
   const int windows = std::max(1, static_cast<int>(full.duration / kWindow));
   const auto window_reference = [&full](int w) {
     const double t0 = kWindow * w;
-    return Reference{kWindow - 1e-9, [&full, t0](double t, int d) {
-                       return full.evaluate(std::min(t0 + t, full.duration), d);
-                     }};
+    Reference slice;
+    slice.duration = kWindow - 1e-9;
+    slice.evaluate = [&full, t0](double t, int d) {
+      return full.evaluate(std::min(t0 + t, full.duration), d);
+    };
+    return slice;
   };
   const auto start_window = [&](int w) {
     auto sim = std::make_unique<Simulation>(Simulation::FromXml(xml, "bench"));

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <tuple>
 
 #include "common/fault_injection.h"
 #include "common/number_format.h"
@@ -42,9 +43,12 @@ const char* ToString(FlightStatus status) {
 }
 
 Reference ReferenceOf(const PiecewiseTrajectory& trajectory) {
-  return {trajectory.duration(), [trajectory](double t, int derivative) -> Vec3 {
-            return trajectory.Evaluate3(t, derivative);
-          }};
+  Reference reference;
+  reference.duration = trajectory.duration();
+  reference.evaluate = [trajectory](double t, int derivative) -> Vec3 {
+    return trajectory.Evaluate3(t, derivative);
+  };
+  return reference;
 }
 
 void PlaceVehicleAtStart(const Map& map, const QuadParams& vehicle, const Vec3& requested,
@@ -107,6 +111,7 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
 
   const double max_thrust = loop.vehicle->MaxRotorThrust();
   const double min_thrust = loop.vehicle->MinRotorThrust();
+  FlatOutput setpoint;
   ControlCommand command;
   InnerOutput inner_out;
   std::vector<double> report;
@@ -121,26 +126,32 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
       break;
     }
 
-    // the setpoint: the reference's flat outputs, its end held after it; the position every
-    // step (for the fly-away check), the rest when the controller runs
+    // the setpoint: the reference's flat outputs when the controller runs, its end held after
+    // it; between control steps it is held (the controller sees nothing else)
     const bool control_step = k % divider == 0;
-    FlatOutput setpoint;
-    setpoint.p_W = reference.evaluate(std::min(t, duration), kPosition);
-    if (control_step && t < duration) {
-      setpoint.v_W = reference.evaluate(t, kVelocity);
-      setpoint.a_W = reference.evaluate(t, kAcceleration);
-      setpoint.j_W = reference.evaluate(t, kJerk);
-      setpoint.s_W = reference.evaluate(t, kSnap);
-      const double speed_xy = setpoint.v_W.head<2>().norm();
-      if (params.face_travel && speed_xy > 0.2) {
-        yaw = std::atan2(setpoint.v_W.y(), setpoint.v_W.x());
-        setpoint.yaw_rate =
-            (setpoint.v_W.x() * setpoint.a_W.y() - setpoint.v_W.y() * setpoint.a_W.x()) /
-            (speed_xy * speed_xy);
+    if (control_step) {
+      setpoint = FlatOutput();
+      setpoint.p_W = reference.evaluate(std::min(t, duration), kPosition);
+      if (t < duration) {
+        setpoint.v_W = reference.evaluate(t, kVelocity);
+        setpoint.a_W = reference.evaluate(t, kAcceleration);
+        setpoint.j_W = reference.evaluate(t, kJerk);
+        setpoint.s_W = reference.evaluate(t, kSnap);
+        const double speed_xy = setpoint.v_W.head<2>().norm();
+        if (reference.heading) {
+          std::tie(yaw, setpoint.yaw_rate) = reference.heading(t);
+        } else if (params.face_travel && speed_xy > 0.2) {
+          yaw = std::atan2(setpoint.v_W.y(), setpoint.v_W.x());
+          setpoint.yaw_rate =
+              (setpoint.v_W.x() * setpoint.a_W.y() - setpoint.v_W.y() * setpoint.a_W.x()) /
+              (speed_xy * speed_xy);
+        }
+      } else if (reference.heading) {
+        yaw = reference.heading(duration).first;
       }
+      setpoint.yaw = yaw;
+      if (t >= nan_from) setpoint.p_W.x() = std::numeric_limits<double>::quiet_NaN();
     }
-    setpoint.yaw = yaw;
-    if (t >= nan_from) setpoint.p_W.x() = std::numeric_limits<double>::quiet_NaN();
 
     // the controller at its rate, the inner loops every step
     if (control_step && !controller.Update(t, state, setpoint, &command)) {

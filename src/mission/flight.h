@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/flat_output.h"
@@ -74,6 +75,9 @@ struct FlightResult {
 struct Reference {
   double duration = 0.0;
   std::function<Vec3(double t, int derivative)> evaluate;
+  // yaw [rad] and yaw rate [rad/s] at t, when the reference has its own heading; empty: the
+  // start's yaw is held, or the yaw follows the travel (FlightParams::face_travel)
+  std::function<std::pair<double, double>(double t)> heading;
 };
 Reference ReferenceOf(const PiecewiseTrajectory& trajectory);
 

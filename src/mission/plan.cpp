@@ -158,7 +158,7 @@ LatticeParams FallbackLattice(const Aabb& free_bounds) {
   return params;
 }
 
-PlanOutcome PlanFlight(const FlightSetup& setup) {
+PlanOutcome PlanFlight(const FlightSetup& setup, bool with_trajectory) {
   const PlanningSettings& settings = setup.planning;
   if (settings.trajectory_method == "given") {
     // a trajectory from elsewhere: nothing to plan; it starts and ends where it does
@@ -223,7 +223,7 @@ PlanOutcome PlanFlight(const FlightSetup& setup) {
     outcome.result = std::move(fallback);
     outcome.planner = "lattice (RRT* found no path)";
   }
-  if (outcome.result.status != PlanStatus::kSolved) return outcome;
+  if (outcome.result.status != PlanStatus::kSolved || !with_trajectory) return outcome;
   outcome.trajectory = TrajectoryAlong(setup, outcome.result.path);
   return outcome;
 }

@@ -69,8 +69,9 @@ LatticeParams FallbackLattice(const Aabb& free_bounds);
 
 // Plans the set-up's start to goal with its planning settings (its seed seeds the planner), then
 // turns the path into a trajectory that keeps the trajectory clearance. Throws InputError for
-// unusable endpoints (or a missing goal); a missing path or trajectory is a status.
-PlanOutcome PlanFlight(const FlightSetup& setup);
+// unusable endpoints (or a missing goal); a missing path or trajectory is a status. Without
+// `with_trajectory`, only the path.
+PlanOutcome PlanFlight(const FlightSetup& setup, bool with_trajectory = true);
 
 // The lattice PlanFlight builds for `setup` (altitudes counted from the map's floor).
 LatticeParams LatticeParamsFor(const FlightSetup& setup);

@@ -171,25 +171,29 @@ OutputFolder::~OutputFolder() {
   if (created_ && fs::is_empty(path_, ec)) fs::remove(path_, ec);
 }
 
-void OutputFolder::RemoveStale() const {
+void OutputFolder::RemoveOutputs(bool stale) const {
   // the files aerobox writes; one not written by this run is an earlier run's
   static const char* const kOutputs[] = {"path.csv",     "trajectory.csv", "telemetry.csv",
                                          "summary.json", "overview.png",   "video.mp4"};
   std::error_code ec;
-  const auto stale = [&](const fs::path& file) {
+  const auto chosen = [&](const fs::path& file) {
     const fs::file_time_type written = fs::last_write_time(file, ec);
-    return !ec && written < run_start_;
+    return !ec && (written < run_start_) == stale;
   };
   for (const char* name : kOutputs) {
     const fs::path file = fs::path(path_) / name;
-    if (fs::exists(file, ec) && stale(file)) fs::remove(file, ec);
+    if (fs::exists(file, ec) && chosen(file)) fs::remove(file, ec);
   }
   const fs::path frames = fs::path(path_) / "frames";
   if (!fs::is_directory(frames, ec)) return;
   for (const fs::directory_entry& entry : fs::directory_iterator(frames, ec)) {
-    if (entry.path().extension() == ".png" && stale(entry.path())) fs::remove(entry.path(), ec);
+    if (entry.path().extension() == ".png" && chosen(entry.path())) fs::remove(entry.path(), ec);
   }
   if (fs::is_empty(frames, ec)) fs::remove(frames, ec);
 }
+
+void OutputFolder::RemoveStale() const { RemoveOutputs(true); }
+
+void OutputFolder::RemoveWritten() const { RemoveOutputs(false); }
 
 }  // namespace aerobox

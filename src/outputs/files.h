@@ -51,8 +51,13 @@ class OutputFolder {
   // After a run: removes the outputs aerobox writes (path.csv ... video.mp4, frames/) that this
   // run did not write, so that the folder holds exactly this run's outputs.
   void RemoveStale() const;
+  // After a run that failed with an exception: removes the outputs this run wrote, so that the
+  // folder holds what it held before.
+  void RemoveWritten() const;
 
  private:
+  void RemoveOutputs(bool stale) const;
+
   std::string path_;
   std::string lock_path_;
   int lock_fd_ = -1;

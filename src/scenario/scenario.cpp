@@ -535,15 +535,34 @@ Scenario ReadScenario(std::istream& in, const std::string& file) {
   return scenario;
 }
 
+namespace {
+
+FlightSetup SetupFrom(const std::string& path, std::optional<Scenario> scenario,
+                      const SetupOverrides& overrides);
+
+}  // namespace
+
 FlightSetup LoadFlightSetup(const std::string& path, const SetupOverrides& overrides) {
-  FlightSetup setup;
-  std::string map_path = path;
   std::optional<Scenario> scenario;
   if (fs::path(path).extension() == ".toml") {
     std::istringstream text(ReadTextFile(path));
     scenario = ReadScenario(text, path);
-    map_path = scenario->map_path;
   }
+  return SetupFrom(path, std::move(scenario), overrides);
+}
+
+FlightSetup LoadFlightSetupFromText(const std::string& text, const std::string& file,
+                                    const SetupOverrides& overrides) {
+  std::istringstream in(text);
+  return SetupFrom(file, ReadScenario(in, file), overrides);
+}
+
+namespace {
+
+FlightSetup SetupFrom(const std::string& path, std::optional<Scenario> scenario,
+                      const SetupOverrides& overrides) {
+  FlightSetup setup;
+  const std::string map_path = scenario ? scenario->map_path : path;
 
   std::string map_text;
   try {
@@ -638,5 +657,7 @@ FlightSetup LoadFlightSetup(const std::string& path, const SetupOverrides& overr
   }
   return setup;
 }
+
+}  // namespace
 
 }  // namespace aerobox

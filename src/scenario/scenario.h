@@ -65,5 +65,9 @@ struct SetupOverrides {
 // (RBE595's start and goal files). Without any start, the vehicle rests on the floor at the
 // map's DefaultStart(). Throws InputError for any bad file.
 FlightSetup LoadFlightSetup(const std::string& path, const SetupOverrides& overrides);
+// The same from scenario text, read as if it were the file `file` (its name is the one messages
+// give; a relative map path resolves against its folder).
+FlightSetup LoadFlightSetupFromText(const std::string& text, const std::string& file,
+                                    const SetupOverrides& overrides);
 
 }  // namespace aerobox

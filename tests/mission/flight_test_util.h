@@ -29,18 +29,21 @@ inline Simulation RoomAt(const Vec3& start, const Map& extra = Map(),
 // derivative), 1e-3 s for jerk and 1e-2 s for snap (about 1e-4 of it, far below what a
 // controller notices).
 inline Reference FromFunction(double duration, std::function<Vec3(double)> position) {
-  return {duration, [position](double t, int derivative) -> Vec3 {
-            const auto p = [&](double dt) { return position(t + dt); };
-            if (derivative == kPosition) return position(t);
-            if (derivative == kVelocity) return (p(1e-4) - p(-1e-4)) / 2e-4;
-            if (derivative == kAcceleration) return (p(1e-4) - 2 * p(0) + p(-1e-4)) / 1e-8;
-            if (derivative == kJerk) {
-              constexpr double h = 1e-3;
-              return (p(2 * h) - 2 * p(h) + 2 * p(-h) - p(-2 * h)) / (2 * h * h * h);
-            }
-            constexpr double h = 1e-2;
-            return (p(2 * h) - 4 * p(h) + 6 * p(0) - 4 * p(-h) + p(-2 * h)) / (h * h * h * h);
-          }};
+  Reference reference;
+  reference.duration = duration;
+  reference.evaluate = [position](double t, int derivative) -> Vec3 {
+    const auto p = [&](double dt) { return position(t + dt); };
+    if (derivative == kPosition) return position(t);
+    if (derivative == kVelocity) return (p(1e-4) - p(-1e-4)) / 2e-4;
+    if (derivative == kAcceleration) return (p(1e-4) - 2 * p(0) + p(-1e-4)) / 1e-8;
+    if (derivative == kJerk) {
+      constexpr double h = 1e-3;
+      return (p(2 * h) - 2 * p(h) + 2 * p(-h) - p(-2 * h)) / (2 * h * h * h);
+    }
+    constexpr double h = 1e-2;
+    return (p(2 * h) - 4 * p(h) + 6 * p(0) - 4 * p(-h) + p(-2 * h)) / (h * h * h * h);
+  };
+  return reference;
 }
 
 // Integral of a quintic smoothstep rising over `ramp` seconds.

@@ -1,0 +1,367 @@
+"""aerobox: fly your Python controllers, trajectories and planners in aerobox's MuJoCo physics.
+
+Conventions (RotorPy's): world frame ENU with z up, body frame FLU (x forward, y left, z up),
+SI units (m, s, N, rad), quaternions as [i, j, k, w] (body to world), body rates in the body
+frame. Arrays are numpy float64.
+
+    import aerobox
+    world = aerobox.read_map("scenes/window/map.json")
+    path = aerobox.plan(world, start, goal, seed=1)              # (N, 3) [m]
+    trajectory = aerobox.min_snap(world, path, max_speed=3.0)    # .duration, .update(t)
+    sim = aerobox.Simulator(world, vehicle="tello", start=path[0])
+    result = sim.run(MyController(sim.quad_params), trajectory)  # RotorPy's result dict
+    aerobox.write_outputs(result, "renders/mine")                # what `aerobox fly` writes
+
+Scenario keys: every function that takes **keys takes the tables of a scenario.toml (README:
+Scenarios): ``planner={...}``, ``trajectory={...}``, ``controller={...}``, ``flight={...}``,
+``vehicle={...}``; plan() and min_snap() take their own table's keys directly.
+"""
+
+import math
+import os
+import warnings
+
+from . import _aerobox
+
+__version__ = _aerobox.__version__
+__all__ = [
+    "Map",
+    "Scenario",
+    "Simulator",
+    "Trajectory",
+    "builtin_controller",
+    "load_scenario",
+    "min_snap",
+    "plan",
+    "read_map",
+    "trajectory",
+    "write_outputs",
+]
+
+Trajectory = _aerobox.Trajectory
+Trajectory.__doc__ = """An aerobox trajectory (min-snap or a baseline), flown exactly.
+
+duration [s]; update(t) -> RotorPy's flat-output dict (x, x_dot, x_ddot, x_dddot, x_ddddot
+[m, m/s, m/s^2, m/s^3, m/s^4], yaw [rad], yaw_dot [rad/s]); status, solved, message, method,
+waypoints (N, 3) [m], solve_time [s], max_speed [m/s], max_accel [m/s^2]. Beyond its duration
+the end point is held at rest."""
+
+
+def _toml_value(value):
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        if isinstance(value, float) and not math.isfinite(value):
+            return "nan" if math.isnan(value) else ("inf" if value > 0 else "-inf")
+        return repr(value)
+    if isinstance(value, str):
+        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(value, os.PathLike):
+        return _toml_value(os.fspath(value))
+    if hasattr(value, "tolist"):  # numpy arrays and numbers
+        return _toml_value(value.tolist())
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    raise TypeError(f"{type(value).__name__} is not a scenario value")
+
+
+def _toml(document):
+    """A scenario dict as TOML text: plain keys first, then one table per dict."""
+    lines = []
+    for key, value in document.items():
+        if not isinstance(value, dict):
+            lines.append(f"{key} = {_toml_value(value)}")
+    for key, value in document.items():
+        if isinstance(value, dict):
+            lines.append(f"[{key}]")
+            lines.extend(f"{k} = {_toml_value(v)}" for k, v in value.items())
+    return "\n".join(lines) + "\n"
+
+
+class Map:
+    """An obstacle map (TXT, JSON or CSV, README: Map formats).
+
+    name, source (the file), bounds (2, 3) [m] (min row, max row), boxes (N, 6) [m] as
+    [xmin, ymin, zmin, xmax, ymax, zmax], colors (N, 3) in [0, 1], start and goal [m] when the
+    file gives them (else None); world() is flightsim's world dict (bounds.extents and blocks
+    with extents [xmin, xmax, ymin, ymax, zmin, zmax] and color), what MEAM620 planners read;
+    clearance(point) is the distance [m] from the vehicle's box at `point` to the nearest box.
+    """
+
+    def __init__(self, setup):
+        self._setup = setup
+        self.name = setup.name
+        self.source = setup.map_path
+        self.bounds = setup.bounds
+        self.boxes = setup.boxes
+        self.colors = setup.colors
+
+    @property
+    def start(self):
+        return self._setup.start
+
+    @property
+    def goal(self):
+        return self._setup.goal
+
+    def world(self):
+        return self._setup.world()
+
+    def clearance(self, point):
+        return self._setup.clearance(point)
+
+    def __repr__(self):
+        return f"aerobox.Map({self.source!r}: {len(self.boxes)} boxes)"
+
+
+def read_map(path):
+    """Reads a map file; ValueError names the file, line and field of a bad one."""
+    return Map(_aerobox._load(os.fspath(path)))
+
+
+class Scenario:
+    """A scenario.toml: its keys (as a dict, `keys`), the map, start, goal and seed."""
+
+    def __init__(self, path):
+        import tomllib
+
+        self.path = os.path.abspath(os.fspath(path))
+        self._setup = _aerobox._load(self.path)
+        with open(self.path, "rb") as file:
+            self.keys = tomllib.load(file)
+        map_path = self.keys.get("map", "")
+        if not os.path.isabs(map_path):
+            self.keys["map"] = os.path.join(os.path.dirname(self.path), map_path)
+        self.keys.setdefault("name", self._setup.name)
+        self.map = Map(self._setup)
+        self.name = self._setup.name
+        self.start = self._setup.start
+        self.goal = self._setup.goal
+        self.seed = self._setup.seed
+
+    def __repr__(self):
+        return f"aerobox.Scenario({self.path!r})"
+
+
+def load_scenario(path):
+    """Reads a scenario.toml (README: Scenarios); ValueError names the file, line and key."""
+    return Scenario(path)
+
+
+def _setup(where, start=None, goal=None, seed=None, label="keywords", **tables):
+    """A set-up from a Map, a Scenario or a path, with scenario keys merged over it."""
+    if isinstance(where, (str, os.PathLike)):
+        where = os.fspath(where)
+        where = Scenario(where) if where.endswith(".toml") else read_map(where)
+    if isinstance(where, Scenario):
+        document = {k: (dict(v) if isinstance(v, dict) else v) for k, v in where.keys.items()}
+    elif isinstance(where, Map):
+        document = {"name": where.name, "map": os.path.abspath(where.source)}
+    else:
+        raise TypeError("expected a map or scenario path, an aerobox.Map or an aerobox.Scenario")
+    for key, value in (("start", start), ("goal", goal), ("seed", seed)):
+        if value is not None:
+            document[key] = value
+    for table, keys in tables.items():
+        if keys is None:
+            continue
+        if not isinstance(keys, dict):
+            raise TypeError(f"{table}: expected a dict of [{table}] keys")
+        document.setdefault(table, {}).update(keys)
+    return _aerobox._from_toml(_toml(document), label)
+
+
+def plan(map, start=None, goal=None, seed=1, **planner_keys):
+    """A collision-free path from start to goal [m] as an (N, 3) array.
+
+    map: an aerobox.Map, an aerobox.Scenario or a path; start, goal [m] (default: the map's or
+    the scenario's). planner_keys are [planner] keys (README: Scenarios), e.g. kind="lattice",
+    max_iterations=2000, clearance=0.1. Raises RuntimeError when there is no path (its status in
+    the message) and ValueError for bad input.
+    """
+    setup = _setup(map, start, goal, seed, "aerobox.plan keywords", planner=planner_keys)
+    result = _aerobox._plan(setup)
+    if result["status"] != "solved":
+        raise RuntimeError(f"aerobox.plan: {result['status']}")
+    return result["path"]
+
+
+def trajectory(map, waypoints, method="minsnap", **trajectory_keys):
+    """A trajectory through `waypoints` ((N, 3) [m], at rest at both ends) by `method`:
+    minsnap (corridor-constrained minimum snap, Ipopt), or a baseline on its waypoints and
+    times: quintic, cubic, septic-full. trajectory_keys are [trajectory] keys, e.g.
+    max_speed=3.0 [m/s], max_accel=3.0 [m/s^2], clearance=0.05 [m]. Raises RuntimeError when no
+    feasible trajectory is found.
+    """
+    keys = dict(trajectory_keys)
+    keys["method"] = method
+    setup = _setup(map, label=f"aerobox.{method} keywords", trajectory=keys)
+    result = _aerobox._trajectory(setup, waypoints)
+    if not result.solved:
+        raise RuntimeError(f"aerobox.{method}: {result.status} ({result.message})")
+    return result
+
+
+def min_snap(map, waypoints, **trajectory_keys):
+    """The minimum-snap trajectory through `waypoints` (see trajectory())."""
+    return trajectory(map, waypoints, "minsnap", **trajectory_keys)
+
+
+def quintic(map, waypoints, **trajectory_keys):
+    """Minimum-jerk quintic segments on min-snap's waypoints and times (see trajectory())."""
+    return trajectory(map, waypoints, "quintic", **trajectory_keys)
+
+
+def cubic(map, waypoints, **trajectory_keys):
+    """Cubic segments on min-snap's waypoints and times (see trajectory())."""
+    return trajectory(map, waypoints, "cubic", **trajectory_keys)
+
+
+class Simulator:
+    """A quadrotor in a map, simulated by MuJoCo at a 1 ms step.
+
+    Simulator(map, vehicle="tello", start=None, seed=1, **scenario_keys)
+
+    map: an aerobox.Map, an aerobox.Scenario or a path (map file or scenario.toml).
+    vehicle: "tello" (80 g, the default), "crazyflie" (RotorPy's and Foerster's Crazyflie 2.0),
+        or a quad_params dict as RotorPy ships it (or flightsim's). From the dict aerobox takes
+        mass [kg], Ixx, Iyy, Izz [kg m^2], num_rotors (must be 4), rotor_pos (dict r1..r4 or an
+        (4, 3) array) [m, body frame], rotor_directions (+1: positive yaw reaction), k_eta
+        [N/(rad/s)^2], k_m [N m/(rad/s)^2], rotor_speed_min, rotor_speed_max [rad/s] (thrust
+        limits k_eta w^2), tau_m [s] (one motor lag for all rotors: their mean) and rotor_radius
+        [m] (the collision box covers the rotor discs, 3 cm high); flightsim's arm_length,
+        k_thrust, k_drag give a "+" layout. Ignored, listed in `ignored_vehicle_keys`:
+        off-diagonal inertia (Ixy, Ixz, Iyz), drag (c_Dx, c_Dy, c_Dz, k_d, k_z, k_h, k_flap),
+        motor_noise_std and anything else. Principal moments that MuJoCo would refuse by a
+        rounding (Izz slightly above Ixx + Iyy, as RotorPy's Crazyflie has) are set to the sum,
+        with a warning, listed in `adjusted_vehicle_keys`.
+    start: [m]; the vehicle rests there (on the floor when the start is at floor level,
+        hovering otherwise). Default: the map's or scenario's start.
+    scenario_keys: goal, and tables: controller={...}, flight={...} (settle_time,
+        goal_tolerance, ...), planner and trajectory (for plans made from this simulator).
+
+    Attributes: quad_params (the vehicle as RotorPy's dict, rotor order as the commands use
+    it), timestep [s], time [s], state (RotorPy's state dict), map (aerobox.Map).
+    """
+
+    def __init__(self, map, vehicle="tello", start=None, seed=1, **scenario_keys):
+        tables = dict(scenario_keys)
+        goal = tables.pop("goal", None)
+        self.ignored_vehicle_keys = []
+        self.adjusted_vehicle_keys = []
+        if isinstance(vehicle, str):
+            tables.setdefault("vehicle", {})
+            tables["vehicle"] = dict(tables["vehicle"], kind=vehicle)
+            setup = _setup(map, start, goal, seed, "aerobox.Simulator keywords", **tables)
+        elif isinstance(vehicle, dict):
+            setup = _setup(map, start, goal, seed, "aerobox.Simulator keywords", **tables)
+            setup, self.ignored_vehicle_keys, self.adjusted_vehicle_keys = (
+                setup.with_vehicle(vehicle))
+            for note in self.adjusted_vehicle_keys:
+                warnings.warn(f"aerobox.Simulator: vehicle {note}", stacklevel=2)
+        else:
+            raise TypeError("vehicle: expected 'tello', 'crazyflie' or a quad_params dict")
+        self._core = _aerobox.SimulatorCore(setup)
+        self._seed = seed
+        self.map = Map(setup)
+
+    @property
+    def quad_params(self):
+        return self._core.vehicle
+
+    @property
+    def timestep(self):
+        return self._core.timestep
+
+    @property
+    def time(self):
+        return self._core.time
+
+    @property
+    def state(self):
+        return self._core.state
+
+    @property
+    def start(self):
+        return self._core.setup.start
+
+    def reset(self, seed=None, state=None):
+        """Back to the start at t = 0 (or to `state`, RotorPy's dict: x [m], v [m/s],
+        q [i, j, k, w], w [rad/s]); `seed` seeds the disturbances (none modelled yet: the same
+        seed gives the same flight). Returns the state."""
+        if seed is not None:
+            self._seed = seed
+        self._core.reset(self._seed, state)
+        return self.state
+
+    def step(self, command, dt, command_kind="auto"):
+        """Applies a controller's command dict for dt [s] (a multiple of the 1 ms physics step;
+        the inner loops below the command run every physics step) and returns the new state.
+        command_kind: see run()."""
+        return self._core.step(command, dt, command_kind)
+
+    def contacts(self):
+        """The geoms the vehicle touches now (names; "floor" for the floor)."""
+        return self._core.contacts()
+
+    def run(self, controller, trajectory, t_final=0.0, control_rate=500, command="auto",
+            reset=True):
+        """Flies `trajectory` with `controller` and returns RotorPy's result dict.
+
+        controller: any object with update(t, state, flat_output) -> dict, or a built-in by
+            name ("cascade", "se3"). The dict holds cmd_motor_thrusts [N] (4), or
+            cmd_motor_speeds [rad/s] (through k_eta), or cmd_thrust [N] with cmd_moment [N m]
+            (body), cmd_w [rad/s] (body) or cmd_q ([i, j, k, w]); extra keys are ignored.
+        command: which keys fly: "auto" (the first present of cmd_motor_thrusts,
+            cmd_motor_speeds, cmd_moment, cmd_w, cmd_q), or RotorPy's control abstraction
+            "cmd_motor_thrusts", "cmd_motor_speeds", "cmd_ctbm", "cmd_ctbr", "cmd_ctatt".
+            aerobox runs the loops below it (attitude, rates, mixer) at 1 kHz.
+        trajectory: an aerobox Trajectory, or any object with update(t) -> flat_output dict
+            (x required; x_dot ... x_ddddot, yaw, yaw_dot default to 0) and a `duration` or
+            `t_final` [s] attribute (otherwise t_final is required).
+        t_final: [s] when the run ends at the latest; 0: the trajectory's duration plus the
+            scenario's settle time (5 s). The run ends earlier once the vehicle is within
+            0.10 m of the trajectory's end below 0.10 m/s (after its duration), or on contact,
+            fly-away (2 m off the setpoint) or a non-finite state.
+        control_rate: [Hz] of controller.update (must divide 1000).
+        reset: start from the simulator's start (hovering at the trajectory's first point when
+            the start is in the air); False: from the current state.
+
+        Returns: time (N,) [s]; state {x, v, q, w} (N, 3|4); control {cmd_motor_thrusts (N, 4)
+        [N] as sent to the rotors, cmd_thrust (N,) [N], cmd_moment (N, 3) [N m]}; flat {x, x_dot,
+        x_ddot, x_dddot, x_ddddot (N, 3), yaw, yaw_dot (N,)}; rotor_thrusts (N, 4) [N] produced;
+        position_error, clearance (N,) [m]; status ("reached goal", "collision", "timeout",
+        "fly-away", "non-finite state", "completed" for a trajectory without a duration run to
+        t_final); reached_goal, collisions, collision_with, min_clearance [m], tracking_rms,
+        tracking_max [m], flight_time [s], distance [m], top_speed [m/s], peak_rotor_fraction,
+        rotor_saturated_time [s], wall_time [s], seed. One row per control step.
+
+        An exception in controller.update or trajectory.update ends the run with that exception
+        (its notes name the time); a command with a missing key, a wrong shape or a non-finite
+        value raises ValueError naming the key and the time.
+        """
+        result, record = self._core.run(controller, trajectory, float(t_final),
+                                        float(control_rate), command, reset)
+        result["_record"] = record
+        return result
+
+
+def write_outputs(result, out_dir, video=True, size=(640, 480), fps=30, camera="chase"):
+    """Writes what `aerobox fly` writes for a run of Simulator.run into out_dir: path.csv,
+    trajectory.csv, telemetry.csv, summary.json, overview.png and video.mp4 (H.264, unless
+    video=False). size [pixels] (W, H), fps [frames/s], camera "chase", "overview" or "top".
+    Returns the folder. Bad options raise ValueError; nothing partial is left."""
+    if "_record" not in result:
+        raise ValueError("write_outputs: expected the dict Simulator.run returned")
+    width, height = size
+    return _aerobox._write_outputs(result["_record"], os.fspath(out_dir), bool(video), int(width),
+                                   int(height), int(fps), camera)
+
+
+def builtin_controller(sim, kind="cascade", rate=500):
+    """A built-in controller ("cascade", "se3") as a Python object for `sim`'s vehicle:
+    update(t, state, flat_output) -> dict with every command level at once: its own command
+    (cmd_thrust [N], cmd_q [i, j, k, w]) and what aerobox's inner loops make of it below it,
+    called at `rate` [Hz]: cmd_w [rad/s], cmd_moment [N m], cmd_motor_thrusts [N],
+    cmd_motor_speeds [rad/s]. For comparing, or wrapping, in Python."""
+    return _aerobox.BuiltinController(sim._core.setup, kind, float(rate))

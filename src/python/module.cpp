@@ -1,0 +1,579 @@
+// The compiled half of the Python package `aerobox` (src/python/aerobox/__init__.py is the
+// other): the set-up, planning, trajectories, the simulator and the outputs, with numpy at the
+// edge. The Python half gives the documented API; names here that start with "_" are its own.
+#include <mujoco/mujoco.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <limits>
+#include <memory>
+
+#include "common/error.h"
+#include "geometry/collision_world.h"
+#include "mission/mission.h"
+#include "mission/plan.h"
+#include "outputs/files.h"
+#include "outputs/flight_outputs.h"
+#include "outputs/summary.h"
+#include "planning/path_simplify.h"
+#include "python/seams.h"
+#include "scenario/scenario.h"
+#include "scene/scene_mjcf.h"
+
+namespace aerobox::python {
+namespace {
+
+using SetupPtr = std::shared_ptr<FlightSetup>;
+
+// InputError and std::invalid_argument become ValueError with aerobox's message.
+template <typename F>
+auto Checked(F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const InputError& e) {
+    throw py::value_error(e.what());
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(e.what());
+  }
+}
+
+py::object OptionalPoint(const std::optional<Vec3>& p) {
+  if (!p) return py::none();
+  return PointsArray({*p}).attr("reshape")(3);
+}
+
+std::optional<Vec3> OptionalPointFrom(const py::object& value, const std::string& what) {
+  if (value.is_none()) return std::nullopt;
+  return PointFrom(value, what);
+}
+
+SetupOverrides Overrides(const py::object& start, const py::object& goal, const py::object& seed) {
+  SetupOverrides overrides;
+  overrides.start = OptionalPointFrom(start, "start");
+  overrides.goal = OptionalPointFrom(goal, "goal");
+  if (!seed.is_none()) {
+    const long long value = seed.cast<long long>();
+    if (value < 0) throw py::value_error("seed must be >= 0");
+    overrides.seed = static_cast<std::uint64_t>(value);
+  }
+  return overrides;
+}
+
+// An aerobox trajectory: the generator's result, flown exactly (no sampling).
+struct Trajectory {
+  TrajectoryResult result;
+  std::string method;
+
+  py::dict Update(double t) const {
+    FlatOutput flat;
+    const double s = std::clamp(t, 0.0, result.trajectory.duration());
+    flat.p_W = result.trajectory.Evaluate3(s, kPosition);
+    if (t >= 0 && t <= result.trajectory.duration()) {
+      flat.v_W = result.trajectory.Evaluate3(t, kVelocity);
+      flat.a_W = result.trajectory.Evaluate3(t, kAcceleration);
+      flat.j_W = result.trajectory.Evaluate3(t, kJerk);
+      flat.s_W = result.trajectory.Evaluate3(t, kSnap);
+    }
+    return FlatDict(flat);
+  }
+};
+
+// What write_outputs needs of a run: the set-up, what was planned and every control step.
+struct FlightRecord {
+  SetupPtr setup;
+  PlanOutcome plan;
+  std::vector<TelemetrySample> samples;
+  FlightResult flight;
+  double wall_time = 0.0;  // [s]
+};
+
+// Stands in for the run's controller when its outputs are written afterwards.
+class RecordedController : public Controller {
+ public:
+  bool Update(double, const State&, const FlatOutput&, ControlCommand*) override { return false; }
+};
+
+class SimulatorCore {
+ public:
+  explicit SimulatorCore(SetupPtr setup)
+      : setup_(std::move(setup)),
+        sim_(Checked([&] { return Simulation::FromXml(SceneMjcfFor(*setup_), setup_->name); })),
+        world_(setup_->map, CollisionParams{setup_->vehicle.collision_size, 0.0}),
+        inner_(setup_->controller.inner, setup_->vehicle) {
+    Reset(1, py::none());
+  }
+
+  void Reset(long long seed, const py::object& state) {
+    if (seed < 0) throw py::value_error("seed must be >= 0");
+    seed_ = static_cast<std::uint64_t>(seed);
+    sim_ = Checked([&] { return Simulation::FromXml(SceneMjcfFor(*setup_), setup_->name); });
+    inner_ = InnerLoops(setup_->controller.inner, setup_->vehicle);
+    if (!state.is_none()) {
+      sim_.SetVehicleState(StateFromDict(state));
+      sim_.SetRotorThrusts(Vec4::Constant(setup_->vehicle.HoverThrustPerRotor()));
+    }
+    t0_ = sim_.time();
+  }
+
+  double Time() const { return sim_.time() - t0_; }
+
+  py::dict StateNow() const {
+    return StateDict(sim_.VehicleState(), sim_.RotorThrusts(), setup_->vehicle);
+  }
+
+  py::dict Step(const py::object& command, double dt, const std::string& choice) {
+    const double step = sim_.timestep();
+    const long steps = std::lround(dt / step);
+    if (!(dt > 0) || steps < 1 || std::abs(steps * step - dt) > 1e-9) {
+      throw py::value_error("dt " + std::to_string(dt) + " s must be a positive multiple of the " +
+                            std::to_string(step) + " s physics step");
+    }
+    const ControlCommand parsed =
+        CommandFromDict(command, ParseCommandChoice(choice), setup_->vehicle, Time(), "step");
+    InnerOutput out;
+    for (long i = 0; i < steps; ++i) {
+      if (!inner_.Run(parsed, sim_.VehicleState(), step, &out)) {
+        throw py::value_error("step: the state or the command is not finite");
+      }
+      sim_.Step(out.mixer.thrusts);
+    }
+    return StateNow();
+  }
+
+  py::list Contacts() const {
+    py::list list;
+    for (const VehicleContact& c : sim_.VehicleContacts()) list.append(c.other_geom);
+    return list;
+  }
+
+  py::tuple Run(const py::object& controller, const py::object& trajectory, double t_final,
+                double control_rate, const std::string& choice, bool reset) {
+    if (!(control_rate > 0)) throw py::value_error("control_rate must be positive [Hz]");
+    if (!(t_final >= 0) || !std::isfinite(t_final)) {
+      throw py::value_error("t_final must be a time >= 0 [s] (0: the trajectory's duration)");
+    }
+    auto record = std::make_shared<FlightRecord>();
+    record->setup = setup_;
+    // the reference: an aerobox trajectory exactly, or the user's object
+    Reference reference;
+    bool duration_known = true;
+    if (py::isinstance<Trajectory>(trajectory)) {
+      const Trajectory& ours = trajectory.cast<const Trajectory&>();
+      reference = ReferenceOf(ours.result.trajectory);
+      if (t_final > 0 && t_final < reference.duration) reference.duration = t_final;
+      record->plan.result.path = ours.result.waypoints;
+    } else {
+      reference = PythonReference(trajectory, t_final, &duration_known);
+    }
+    FlightParams params = setup_->flight;
+    if (t_final > 0) params.settle_time = std::max(0.0, t_final - reference.duration);
+    // the controller: a built-in by name, or the user's object
+    std::unique_ptr<Controller> made;
+    ControllerConfig config = setup_->controller;
+    config.rate = control_rate;
+    if (py::isinstance<py::str>(controller)) {
+      config.kind = controller.cast<std::string>();
+      made = Checked([&] {
+        config.Validate();
+        return MakeController(config, setup_->vehicle);
+      });
+    } else {
+      made = std::make_unique<PythonController>(controller, setup_->vehicle,
+                                                ParseCommandChoice(choice));
+      config.kind =
+          "python:" + std::string(py::str(py::type::handle_of(controller).attr("__name__")));
+    }
+    if (reset) Reset(static_cast<long long>(seed_), py::none());
+    const Vec3 first = reference.evaluate(0.0, kPosition);
+    if (reset) PlaceVehicleAtStart(setup_->map, setup_->vehicle, setup_->start, first, &sim_);
+    record->setup = std::make_shared<FlightSetup>(*setup_);
+    record->setup->controller = config;
+    record->setup->seed = seed_;
+
+    FlightLoop loop;
+    loop.vehicle = &setup_->vehicle;
+    loop.controller = made.get();
+    loop.control_rate = control_rate;
+    loop.inner = setup_->controller.inner;
+    loop.clearance = [this](const Vec3& p) { return world_.Clearance(p); };
+    loop.telemetry = [&record](const TelemetrySample& s) { record->samples.push_back(s); };
+    const auto begin = std::chrono::steady_clock::now();
+    record->flight = Checked([&] { return FlyTrajectory(reference, params, loop, &sim_); });
+    record->wall_time =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+
+    // what was planned, as write_outputs shows it: the waypoints (or the ends) and the
+    // trajectory (the user's sampled at the control rate)
+    PlanOutcome& plan = record->plan;
+    plan.start.requested = plan.start.used =
+        record->samples.empty() ? sim_.VehicleState().p_W : record->samples.front().state.p_W;
+    plan.goal.requested = plan.goal.used = reference.evaluate(reference.duration, kPosition);
+    if (plan.result.path.empty()) plan.result.path = {first, plan.goal.used};
+    plan.result.status = PlanStatus::kSolved;
+    plan.planner = "given";
+    std::string status = ToString(record->flight.status);
+    if (!duration_known && record->flight.status == FlightStatus::kTimeout) status = "completed";
+    return py::make_tuple(Result(*record, status), record);
+  }
+
+  py::dict VehicleParams() const { return VehicleDict(setup_->vehicle); }
+  double Timestep() const { return sim_.timestep(); }
+  const SetupPtr& setup() const { return setup_; }
+
+ private:
+  py::dict Result(const FlightRecord& record, const std::string& status) const {
+    const std::vector<TelemetrySample>& s = record.samples;
+    const py::ssize_t n = static_cast<py::ssize_t>(s.size());
+    const auto matrix = [n](int columns) {
+      return py::array_t<double>({n, static_cast<py::ssize_t>(columns)});
+    };
+    py::array_t<double> time(n), yaw(n), yaw_dot(n), thrust(n), error(n), clearance(n);
+    auto x = matrix(3), v = matrix(3), q = matrix(4), w = matrix(3);
+    auto fx = matrix(3), fv = matrix(3), fa = matrix(3), fj = matrix(3), fs = matrix(3);
+    auto motors = matrix(4), moment = matrix(3), produced = matrix(4);
+    const auto put = [](py::array_t<double>& a, py::ssize_t i, const double* values, int k) {
+      double* row = a.mutable_data(i, 0);
+      for (int c = 0; c < k; ++c) row[c] = values[c];
+    };
+    for (py::ssize_t i = 0; i < n; ++i) {
+      const TelemetrySample& r = s[static_cast<size_t>(i)];
+      time.mutable_at(i) = r.t;
+      put(x, i, r.state.p_W.data(), 3);
+      put(v, i, r.state.v_W.data(), 3);
+      const double quat[4] = {r.state.q_WB.x(), r.state.q_WB.y(), r.state.q_WB.z(),
+                              r.state.q_WB.w()};
+      put(q, i, quat, 4);
+      put(w, i, r.state.w_B.data(), 3);
+      put(fx, i, r.setpoint.p_W.data(), 3);
+      put(fv, i, r.setpoint.v_W.data(), 3);
+      put(fa, i, r.setpoint.a_W.data(), 3);
+      put(fj, i, r.setpoint.j_W.data(), 3);
+      put(fs, i, r.setpoint.s_W.data(), 3);
+      yaw.mutable_at(i) = r.setpoint.yaw;
+      yaw_dot.mutable_at(i) = r.setpoint.yaw_rate;
+      put(motors, i, r.inner.mixer.thrusts.data(), 4);
+      thrust.mutable_at(i) = r.inner.thrust;
+      put(moment, i, r.inner.moment_B.data(), 3);
+      put(produced, i, r.rotor_thrusts.data(), 4);
+      error.mutable_at(i) = r.position_error;
+      clearance.mutable_at(i) = r.clearance;
+    }
+    py::dict state, control, flat, result;
+    state["x"] = x;
+    state["v"] = v;
+    state["q"] = q;
+    state["w"] = w;
+    control["cmd_motor_thrusts"] = motors;
+    control["cmd_thrust"] = thrust;
+    control["cmd_moment"] = moment;
+    flat["x"] = fx;
+    flat["x_dot"] = fv;
+    flat["x_ddot"] = fa;
+    flat["x_dddot"] = fj;
+    flat["x_ddddot"] = fs;
+    flat["yaw"] = yaw;
+    flat["yaw_dot"] = yaw_dot;
+    const FlightResult& f = record.flight;
+    result["time"] = time;
+    result["state"] = state;
+    result["control"] = control;
+    result["flat"] = flat;
+    result["rotor_thrusts"] = produced;
+    result["position_error"] = error;
+    result["clearance"] = clearance;
+    result["status"] = status;
+    result["reached_goal"] = f.status == FlightStatus::kReachedGoal;
+    result["collisions"] = f.status == FlightStatus::kCollision ? 1 : 0;
+    result["collision_with"] = f.obstacle;
+    result["min_clearance"] = f.min_clearance;
+    result["tracking_rms"] = f.rms_error;
+    result["tracking_max"] = f.max_error;
+    result["flight_time"] = f.time;
+    result["distance"] = f.distance;
+    result["top_speed"] = f.top_speed;
+    result["peak_rotor_fraction"] = f.peak_rotor_fraction;
+    result["rotor_saturated_time"] = f.saturated_time;
+    result["control_rate"] = f.control_rate;
+    result["wall_time"] = record.wall_time;
+    result["seed"] = static_cast<long long>(seed_);
+    return result;
+  }
+
+  SetupPtr setup_;
+  Simulation sim_;
+  CollisionWorld world_;
+  InnerLoops inner_;
+  std::uint64_t seed_ = 1;
+  double t0_ = 0.0;
+};
+
+// A built-in controller answering as a Python one does, with every command level at once: its
+// own command and what aerobox's inner loops (its own copy, stepped once per call) make of it
+// below, down to the rotors.
+class BuiltinController {
+ public:
+  BuiltinController(const SetupPtr& setup, const std::string& kind, double rate)
+      : vehicle_(setup->vehicle),
+        config_(setup->controller),
+        inner_(setup->controller.inner, setup->vehicle) {
+    if (!(rate > 0)) throw py::value_error("rate must be positive [Hz]");
+    config_.kind = kind;
+    config_.rate = rate;
+    controller_ = Checked([&] {
+      config_.Validate();
+      return MakeController(config_, vehicle_);
+    });
+  }
+
+  py::dict Update(double t, const py::object& state_dict, const py::object& flat_dict) {
+    const State state = StateFromDict(state_dict);
+    const FlatOutput flat = FlatFromDict(flat_dict, t, "flat_output");
+    ControlCommand command;
+    InnerOutput out;
+    if (!controller_->Update(t, state, flat, &command) ||
+        !inner_.Run(command, state, 1.0 / config_.rate, &out)) {
+      throw py::value_error("the built-in controller got a non-finite input");
+    }
+    py::dict dict;
+    dict["cmd_thrust"] = command.thrust;
+    const double q[4] = {command.q_WB.x(), command.q_WB.y(), command.q_WB.z(), command.q_WB.w()};
+    py::array_t<double> cmd_q(4);
+    for (int i = 0; i < 4; ++i) cmd_q.mutable_at(i) = q[i];
+    dict["cmd_q"] = cmd_q;
+    dict["cmd_w"] = PointsArray({out.rate_setpoint_B}).attr("reshape")(3);
+    dict["cmd_moment"] = PointsArray({out.moment_B}).attr("reshape")(3);
+    py::array_t<double> thrusts(4), speeds(4);
+    for (int i = 0; i < kNumRotors; ++i) {
+      thrusts.mutable_at(i) = out.mixer.thrusts[i];
+      speeds.mutable_at(i) = vehicle_.RotorSpeedFor(out.mixer.thrusts[i]);
+    }
+    dict["cmd_motor_thrusts"] = thrusts;
+    dict["cmd_motor_speeds"] = speeds;
+    return dict;
+  }
+
+ private:
+  QuadParams vehicle_;
+  ControllerConfig config_;
+  InnerLoops inner_;
+  std::unique_ptr<Controller> controller_;
+};
+
+// The files `aerobox fly` writes, from a run's record: the flight is replayed through the same
+// observers (the state of every control step set in a fresh scene).
+std::string WriteOutputs(const FlightRecord& record, const std::string& out_dir, bool video,
+                         int width, int height, int fps, const std::string& camera) {
+  return Checked([&] {
+    const FlightSetup& setup = *record.setup;
+    const OutputFolder folder(out_dir, setup.name);
+    try {
+      RenderOptions render;
+      render.width = width;
+      render.height = height;
+      render.video = video;
+      render.fps = fps;
+      if (camera == "overview") {
+        render.camera = {CameraKind::kOverview, ""};
+      } else if (camera == "top") {
+        render.camera = {CameraKind::kTop, ""};
+      } else if (camera != "chase") {
+        throw py::value_error("camera '" + camera + "': expected chase, overview or top");
+      }
+      if (width < 16 || height < 16 || (video && (width % 2 || height % 2))) {
+        throw py::value_error("size: expected even sides of 16 pixels or more");
+      }
+      PlanOutcome plan = record.plan;
+      if (!plan.trajectory) {
+        std::vector<TrajectorySample> samples;
+        for (const TelemetrySample& s : record.samples) {
+          if (!samples.empty() && s.t <= samples.back().t) continue;
+          samples.push_back({s.t, s.setpoint.p_W, s.setpoint.v_W, s.setpoint.a_W});
+        }
+        TrajectoryResult trajectory;
+        trajectory.status = TrajectoryStatus::kSolved;
+        if (samples.size() >= 2) trajectory.trajectory = SampledTrajectory(samples);
+        MeasureTrajectory(TrajectoryParams(), &trajectory);
+        plan.trajectory = trajectory;
+      }
+      CsvOutputs csv(folder.path());
+      RenderOutputs pictures(folder.path(), setup, render, std::cerr);
+      Simulation sim = Simulation::FromXml(SceneMjcfFor(setup), setup.name);
+      pictures.OnScene(sim, {});
+      const std::vector<MissionObserver*> observers = {&csv, &pictures};
+      for (MissionObserver* o : observers) o->OnPlan(plan);
+      RecordedController controller;
+      for (MissionObserver* o : observers) o->OnFlightStart(sim, controller);
+      for (const TelemetrySample& s : record.samples) {
+        sim.SetVehicleState(s.state);
+        for (MissionObserver* o : observers) o->OnSample(s);
+      }
+      for (MissionObserver* o : observers) o->OnFlightEnd(sim, record.flight);
+      MissionResult mission;
+      mission.plan = plan;
+      mission.flown = true;
+      mission.flight = record.flight;
+      mission.flight_wall_time = record.wall_time;
+      mission.status = record.flight.status == FlightStatus::kReachedGoal
+                           ? MissionStatus::kReachedGoal
+                           : MissionStatus::kFlightFailed;
+      const JsonObject summary = RunSummary(setup, mission, {1, pictures.video_frames(), fps});
+      WriteFileAtomically((std::filesystem::path(folder.path()) / "summary.json").string(),
+                          summary.Text());
+    } catch (...) {
+      folder.RemoveWritten();
+      throw;
+    }
+    folder.RemoveStale();
+    return folder.path();
+  });
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_aerobox, m) {
+  m.doc() = "aerobox's compiled core; use the package `aerobox`";
+  m.attr("__version__") = AEROBOX_VERSION;
+  m.attr("mujoco_version") = mj_versionString();
+
+  py::class_<FlightSetup, SetupPtr>(m, "Setup")
+      .def_property_readonly("name", [](const FlightSetup& s) { return s.name; })
+      .def_property_readonly("map_path", [](const FlightSetup& s) { return s.map.source; })
+      .def_property_readonly("start", [](const FlightSetup& s) { return OptionalPoint(s.start); })
+      .def_property_readonly("goal", [](const FlightSetup& s) { return OptionalPoint(s.goal); })
+      .def_property_readonly("seed", [](const FlightSetup& s) { return s.seed; })
+      .def_property_readonly("vehicle_kind", [](const FlightSetup& s) { return s.vehicle_kind; })
+      .def_property_readonly("vehicle", [](const FlightSetup& s) { return VehicleDict(s.vehicle); })
+      .def_property_readonly("controller", [](const FlightSetup& s) { return s.controller.kind; })
+      .def_property_readonly("control_rate", [](const FlightSetup& s) { return s.controller.rate; })
+      .def_property_readonly("bounds",
+                             [](const FlightSetup& s) {
+                               return PointsArray({s.map.bounds.min, s.map.bounds.max});
+                             })
+      .def_property_readonly("boxes",
+                             [](const FlightSetup& s) {
+                               py::array_t<double> boxes(
+                                   {static_cast<py::ssize_t>(s.map.boxes.size()), py::ssize_t{6}});
+                               for (size_t i = 0; i < s.map.boxes.size(); ++i) {
+                                 const Aabb& e = s.map.boxes[i].extent;
+                                 for (int k = 0; k < 3; ++k) {
+                                   boxes.mutable_at(i, k) = e.min[k];
+                                   boxes.mutable_at(i, 3 + k) = e.max[k];
+                                 }
+                               }
+                               return boxes;
+                             })
+      .def_property_readonly("colors",
+                             [](const FlightSetup& s) {
+                               std::vector<Vec3> rgb;
+                               for (const Box& b : s.map.boxes) rgb.push_back(b.rgb);
+                               return PointsArray(rgb);
+                             })
+      .def("world", [](const FlightSetup& s) { return WorldDict(s.map); })
+      .def("clearance",
+           [](const FlightSetup& s, const py::object& point) {
+             const CollisionWorld world(s.map, CollisionParams{s.vehicle.collision_size, 0.0});
+             return world.Clearance(PointFrom(point, "point"));
+           })
+      .def("with_vehicle", [](const FlightSetup& s, const py::object& vehicle) {
+        auto copy = std::make_shared<FlightSetup>(s);
+        std::vector<std::string> ignored, adjusted;
+        copy->vehicle = VehicleFromDict(vehicle, &ignored, &adjusted);
+        copy->vehicle_kind = "dict";
+        return py::make_tuple(copy, ignored, adjusted);
+      });
+
+  m.def(
+      "_load",
+      [](const std::string& path, const py::object& start, const py::object& goal,
+         const py::object& seed) {
+        return std::make_shared<FlightSetup>(
+            Checked([&] { return LoadFlightSetup(path, Overrides(start, goal, seed)); }));
+      },
+      py::arg("path"), py::arg("start") = py::none(), py::arg("goal") = py::none(),
+      py::arg("seed") = py::none());
+  m.def(
+      "_from_toml",
+      [](const std::string& text, const std::string& label) {
+        return std::make_shared<FlightSetup>(
+            Checked([&] { return LoadFlightSetupFromText(text, label, {}); }));
+      },
+      py::arg("text"), py::arg("label"));
+
+  m.def("_plan", [](const FlightSetup& setup) {
+    // the path only: min_snap() is separate
+    const PlanOutcome plan = Checked([&] { return PlanFlight(setup, false); });
+    py::dict result;
+    result["status"] = ToString(plan.result.status);
+    result["path"] = PointsArray(plan.result.path);
+    result["planner"] = plan.planner;
+    result["planning_time"] = plan.result.stats.planning_time;
+    result["iterations"] = plan.result.stats.iterations;
+    result["length"] = PathLength(plan.result.path);
+    result["start"] = OptionalPoint(plan.start.used);
+    result["goal"] = OptionalPoint(plan.goal.used);
+    return result;
+  });
+
+  py::class_<Trajectory>(m, "Trajectory")
+      .def_property_readonly("duration",
+                             [](const Trajectory& t) { return t.result.trajectory.duration(); })
+      .def_property_readonly("status",
+                             [](const Trajectory& t) { return ToString(t.result.status); })
+      .def_property_readonly(
+          "solved",
+          [](const Trajectory& t) { return t.result.status == TrajectoryStatus::kSolved; })
+      .def_property_readonly("message",
+                             [](const Trajectory& t) { return t.result.stats.solver_message; })
+      .def_property_readonly("method", [](const Trajectory& t) { return t.method; })
+      .def_property_readonly("waypoints",
+                             [](const Trajectory& t) { return PointsArray(t.result.waypoints); })
+      .def_property_readonly("solve_time",
+                             [](const Trajectory& t) { return t.result.stats.solve_time; })
+      .def_property_readonly("max_speed",
+                             [](const Trajectory& t) { return t.result.stats.max_speed; })
+      .def_property_readonly("max_accel",
+                             [](const Trajectory& t) { return t.result.stats.max_accel; })
+      .def("update", &Trajectory::Update, py::arg("t"));
+  m.def("_trajectory", [](const FlightSetup& setup, const py::object& waypoints) {
+    const std::vector<Vec3> path = PointsFromArray(waypoints, "waypoints");
+    if (path.size() < 2) throw py::value_error("waypoints: two points or more");
+    Trajectory t;
+    t.method = setup.planning.trajectory_method;
+    t.result = Checked([&] { return TrajectoryAlong(setup, path); });
+    return t;
+  });
+
+  py::class_<FlightRecord, std::shared_ptr<FlightRecord>>(m, "FlightRecord")
+      .def_property_readonly("samples", [](const FlightRecord& r) { return r.samples.size(); })
+      .def_property_readonly("scenario", [](const FlightRecord& r) { return r.setup->name; });
+
+  py::class_<SimulatorCore>(m, "SimulatorCore")
+      .def(py::init<SetupPtr>())
+      .def("reset", &SimulatorCore::Reset, py::arg("seed"), py::arg("state"))
+      .def("step", &SimulatorCore::Step, py::arg("command"), py::arg("dt"), py::arg("command_kind"))
+      .def("run", &SimulatorCore::Run, py::arg("controller"), py::arg("trajectory"),
+           py::arg("t_final"), py::arg("control_rate"), py::arg("command_kind"), py::arg("reset"))
+      .def("contacts", &SimulatorCore::Contacts)
+      .def_property_readonly("time", &SimulatorCore::Time)
+      .def_property_readonly("state", &SimulatorCore::StateNow)
+      .def_property_readonly("vehicle", &SimulatorCore::VehicleParams)
+      .def_property_readonly("timestep", &SimulatorCore::Timestep)
+      .def_property_readonly("setup", &SimulatorCore::setup);
+
+  py::class_<BuiltinController>(m, "BuiltinController")
+      .def(py::init<const SetupPtr&, const std::string&, double>(), py::arg("setup"),
+           py::arg("kind"), py::arg("rate"))
+      .def("update", &BuiltinController::Update, py::arg("t"), py::arg("state"),
+           py::arg("flat_output"));
+
+  m.def("_write_outputs", &WriteOutputs, py::arg("record"), py::arg("out_dir"), py::arg("video"),
+        py::arg("width"), py::arg("height"), py::arg("fps"), py::arg("camera"));
+  m.def("_load_class", &LoadClass);
+}
+
+}  // namespace aerobox::python

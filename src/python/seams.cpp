@@ -1,0 +1,626 @@
+#include "python/seams.h"
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <memory>
+#include <set>
+#include <sstream>
+
+#include "common/number_format.h"
+
+namespace aerobox::python {
+namespace {
+
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+std::string At(const std::string& who, double t) {
+  return who + " at t = " + FormatNumber(std::round(t * 1e6) / 1e6) + " s";
+}
+
+py::array_t<double> VectorArray(const double* values, int n) {
+  py::array_t<double> array(n);
+  double* out = array.mutable_data();
+  for (int i = 0; i < n; ++i) out[i] = values[i];
+  return array;
+}
+
+py::array_t<double> Vec3Array(const Vec3& v) { return VectorArray(v.data(), 3); }
+
+// `value` as `n` finite numbers (any array-like of that size, or a number when n == 1).
+bool ReadNumbers(py::handle value, int n, double* out, std::string* problem) {
+  Array array;
+  try {
+    array = Array::ensure(value);
+  } catch (const py::error_already_set&) {
+    array = Array();
+  }
+  if (!array) {
+    PyErr_Clear();
+    *problem = "is a " + std::string(py::str(py::type::handle_of(value).attr("__name__"))) +
+               ", expected " + (n == 1 ? std::string("a number") : std::to_string(n) + " numbers");
+    return false;
+  }
+  if (array.size() != n) {
+    std::ostringstream shape;
+    shape << "(";
+    for (py::ssize_t d = 0; d < array.ndim(); ++d) shape << (d ? ", " : "") << array.shape(d);
+    shape << (array.ndim() == 1 ? ",)" : ")");
+    *problem = "has shape " + shape.str() + ", expected " +
+               (n == 1 ? std::string("a number") : "(" + std::to_string(n) + ",)");
+    return false;
+  }
+  const double* data = array.data();
+  for (int i = 0; i < n; ++i) {
+    if (!std::isfinite(data[i])) {
+      *problem = "is not finite (" + FormatNumber(data[i]) + ")";
+      return false;
+    }
+    out[i] = data[i];
+  }
+  return true;
+}
+
+py::dict AsDict(py::handle value, const std::string& who) {
+  if (!py::isinstance<py::dict>(value)) {
+    throw py::value_error(who + " returned a " +
+                          std::string(py::str(py::type::handle_of(value).attr("__name__"))) +
+                          ", expected a dict");
+  }
+  return py::reinterpret_borrow<py::dict>(value);
+}
+
+template <int N>
+Eigen::Matrix<double, N, 1> Require(const py::dict& dict, const char* key, const std::string& who) {
+  if (!dict.contains(key)) throw py::value_error(who + ": no key '" + key + "'");
+  Eigen::Matrix<double, N, 1> value;
+  std::string problem;
+  if (!ReadNumbers(dict[key], N, value.data(), &problem)) {
+    throw py::value_error(who + ": '" + key + "' " + problem);
+  }
+  return value;
+}
+
+double Number(py::handle dict_value, const std::string& what) {
+  double value = 0.0;
+  std::string problem;
+  if (!ReadNumbers(dict_value, 1, &value, &problem)) throw py::value_error(what + " " + problem);
+  return value;
+}
+
+}  // namespace
+
+Vec3 PointFrom(py::handle value, const std::string& what) {
+  Vec3 p;
+  std::string problem;
+  if (!ReadNumbers(value, 3, p.data(), &problem)) throw py::value_error(what + " " + problem);
+  return p;
+}
+
+std::vector<Vec3> PointsFromArray(py::handle value, const std::string& what) {
+  Array array;
+  try {
+    array = Array::ensure(value);
+  } catch (const py::error_already_set&) {
+    array = Array();
+  }
+  if (!array) PyErr_Clear();
+  if (!array || array.ndim() != 2 || array.shape(1) != 3) {
+    throw py::value_error(what + ": expected an (N, 3) array of points [m]");
+  }
+  std::vector<Vec3> points(static_cast<size_t>(array.shape(0)));
+  for (size_t i = 0; i < points.size(); ++i) {
+    points[i] = Vec3(array.at(i, 0), array.at(i, 1), array.at(i, 2));
+    if (!points[i].allFinite()) {
+      throw py::value_error(what + ": point " + std::to_string(i) + " is not finite");
+    }
+  }
+  return points;
+}
+
+py::object PointsArray(const std::vector<Vec3>& points) {
+  py::array_t<double> array({static_cast<py::ssize_t>(points.size()), py::ssize_t{3}});
+  auto out = array.mutable_unchecked<2>();
+  for (size_t i = 0; i < points.size(); ++i) {
+    for (int k = 0; k < 3; ++k) out(i, k) = points[i][k];
+  }
+  return std::move(array);
+}
+
+py::dict StateDict(const State& state, const Vec4& rotor_thrusts, const QuadParams& vehicle) {
+  py::dict dict;
+  dict["x"] = Vec3Array(state.p_W);
+  dict["v"] = Vec3Array(state.v_W);
+  const double q[4] = {state.q_WB.x(), state.q_WB.y(), state.q_WB.z(), state.q_WB.w()};
+  dict["q"] = VectorArray(q, 4);
+  dict["w"] = Vec3Array(state.w_B);
+  dict["wind"] = Vec3Array(Vec3::Zero());
+  Vec4 speeds;
+  for (int i = 0; i < kNumRotors; ++i) speeds[i] = vehicle.RotorSpeedFor(rotor_thrusts[i]);
+  dict["rotor_speeds"] = VectorArray(speeds.data(), 4);
+  return dict;
+}
+
+State StateFromDict(py::handle value) {
+  const py::dict dict = AsDict(value, "state");
+  State state;
+  const std::string who = "state";
+  state.p_W = Require<3>(dict, "x", who);
+  if (dict.contains("v")) state.v_W = Require<3>(dict, "v", who);
+  if (dict.contains("w")) state.w_B = Require<3>(dict, "w", who);
+  if (dict.contains("q")) {
+    const Vec4 q = Require<4>(dict, "q", who);
+    if (q.norm() < 1e-9) throw py::value_error("state: 'q' is zero, expected [i, j, k, w]");
+    state.q_WB = Quat(q[3], q[0], q[1], q[2]).normalized();
+  }
+  return state;
+}
+
+py::dict FlatDict(const FlatOutput& flat) {
+  py::dict dict;
+  dict["x"] = Vec3Array(flat.p_W);
+  dict["x_dot"] = Vec3Array(flat.v_W);
+  dict["x_ddot"] = Vec3Array(flat.a_W);
+  dict["x_dddot"] = Vec3Array(flat.j_W);
+  dict["x_ddddot"] = Vec3Array(flat.s_W);
+  dict["yaw"] = flat.yaw;
+  dict["yaw_dot"] = flat.yaw_rate;
+  return dict;
+}
+
+FlatOutput FlatFromDict(py::handle value, double t, const std::string& who) {
+  const std::string where = At(who, t);
+  const py::dict dict = AsDict(value, where);
+  FlatOutput flat;
+  flat.p_W = Require<3>(dict, "x", where);
+  const auto optional3 = [&](const char* key, Vec3* out) {
+    if (dict.contains(key)) *out = Require<3>(dict, key, where);
+  };
+  optional3("x_dot", &flat.v_W);
+  optional3("x_ddot", &flat.a_W);
+  optional3("x_dddot", &flat.j_W);
+  optional3("x_ddddot", &flat.s_W);
+  if (dict.contains("yaw")) flat.yaw = Require<1>(dict, "yaw", where)[0];
+  if (dict.contains("yaw_dot")) flat.yaw_rate = Require<1>(dict, "yaw_dot", where)[0];
+  return flat;
+}
+
+CommandChoice ParseCommandChoice(const std::string& name) {
+  static const std::map<std::string, CommandChoice> kChoices = {
+      {"auto", CommandChoice::kAuto},
+      {"cmd_motor_thrusts", CommandChoice::kMotorThrusts},
+      {"cmd_motor_speeds", CommandChoice::kMotorSpeeds},
+      {"cmd_ctbm", CommandChoice::kThrustMoment},
+      {"cmd_ctbr", CommandChoice::kThrustRates},
+      {"cmd_ctatt", CommandChoice::kThrustAttitude}};
+  const auto it = kChoices.find(name);
+  if (it == kChoices.end()) {
+    throw py::value_error("command '" + name +
+                          "': expected auto, cmd_motor_thrusts, cmd_motor_speeds, cmd_ctbm "
+                          "(thrust + moment), cmd_ctbr (thrust + body rates) or cmd_ctatt "
+                          "(thrust + attitude)");
+  }
+  return it->second;
+}
+
+ControlCommand CommandFromDict(py::handle value, CommandChoice choice, const QuadParams& vehicle,
+                               double t, const std::string& who) {
+  const std::string where = At(who, t);
+  const py::dict dict = AsDict(value, where);
+  if (choice == CommandChoice::kAuto) {
+    if (dict.contains("cmd_motor_thrusts")) {
+      choice = CommandChoice::kMotorThrusts;
+    } else if (dict.contains("cmd_motor_speeds")) {
+      choice = CommandChoice::kMotorSpeeds;
+    } else if (dict.contains("cmd_moment")) {
+      choice = CommandChoice::kThrustMoment;
+    } else if (dict.contains("cmd_w")) {
+      choice = CommandChoice::kThrustRates;
+    } else if (dict.contains("cmd_q")) {
+      choice = CommandChoice::kThrustAttitude;
+    } else {
+      throw py::value_error(where +
+                            ": the dict holds none of cmd_motor_thrusts, cmd_motor_speeds, "
+                            "cmd_moment, cmd_w or cmd_q (with cmd_thrust)");
+    }
+  }
+  ControlCommand command;
+  switch (choice) {
+    case CommandChoice::kMotorThrusts:
+      command.level = CommandLevel::kRotorThrusts;
+      command.rotor_thrusts = Require<4>(dict, "cmd_motor_thrusts", where);
+      break;
+    case CommandChoice::kMotorSpeeds: {
+      command.level = CommandLevel::kRotorThrusts;
+      const Vec4 speeds = Require<4>(dict, "cmd_motor_speeds", where);
+      for (int i = 0; i < kNumRotors; ++i)
+        command.rotor_thrusts[i] = vehicle.ThrustAtSpeed(speeds[i]);
+      break;
+    }
+    case CommandChoice::kThrustMoment:
+      command.level = CommandLevel::kThrustMoment;
+      command.thrust = Require<1>(dict, "cmd_thrust", where)[0];
+      command.moment_B = Require<3>(dict, "cmd_moment", where);
+      break;
+    case CommandChoice::kThrustRates:
+      command.level = CommandLevel::kThrustRates;
+      command.thrust = Require<1>(dict, "cmd_thrust", where)[0];
+      command.rate_B = Require<3>(dict, "cmd_w", where);
+      break;
+    case CommandChoice::kThrustAttitude: {
+      command.level = CommandLevel::kThrustAttitude;
+      command.thrust = Require<1>(dict, "cmd_thrust", where)[0];
+      const Vec4 q = Require<4>(dict, "cmd_q", where);
+      if (q.norm() < 1e-9)
+        throw py::value_error(where + ": 'cmd_q' is zero, expected [i, j, k, w]");
+      command.q_WB = Quat(q[3], q[0], q[1], q[2]).normalized();
+      break;
+    }
+    case CommandChoice::kAuto:
+      break;
+  }
+  return command;
+}
+
+QuadParams VehicleFromDict(py::handle value, std::vector<std::string>* ignored,
+                           std::vector<std::string>* adjusted) {
+  const py::dict dict = AsDict(value, "vehicle");
+  const std::string who = "vehicle";
+  std::set<std::string> used;
+  const auto has = [&](const char* key) { return dict.contains(key); };
+  const auto number = [&](const char* key) {
+    used.insert(key);
+    return Number(dict[key], "vehicle['" + std::string(key) + "']");
+  };
+  QuadParams v;
+  if (!has("mass")) throw py::value_error("vehicle: no key 'mass' [kg]");
+  v.mass = number("mass");
+  for (const char* key : {"Ixx", "Iyy", "Izz"}) {
+    if (!has(key)) throw py::value_error(std::string("vehicle: no key '") + key + "' [kg m^2]");
+  }
+  v.inertia = Vec3(number("Ixx"), number("Iyy"), number("Izz"));
+  // MuJoCo refuses principal moments that break the triangle inequality; a flat vehicle's
+  // published values can, by rounding (RotorPy's Crazyflie: Izz 2.89e-5 > 2 x 1.43e-5)
+  for (int i = 0; i < 3; ++i) {
+    const double others = v.inertia[(i + 1) % 3] + v.inertia[(i + 2) % 3];
+    if (v.inertia[i] > others && v.inertia[i] <= 1.05 * others) {
+      static const char* const kAxis[] = {"Ixx", "Iyy", "Izz"};
+      adjusted->push_back(std::string(kAxis[i]) + " " + FormatNumber(v.inertia[i]) + " -> " +
+                          FormatNumber(others) +
+                          " kg m^2 (MuJoCo needs each moment at most the sum of the others)");
+      v.inertia[i] = others;
+    }
+  }
+  if (has("num_rotors") && number("num_rotors") != kNumRotors) {
+    throw py::value_error("vehicle['num_rotors']: aerobox flies quadrotors (4 rotors)");
+  }
+  // thrust and yaw moment coefficients: RotorPy's k_eta, k_m, or flightsim's k_thrust, k_drag
+  const char* k_thrust = has("k_eta") ? "k_eta" : "k_thrust";
+  const char* k_moment = has("k_m") ? "k_m" : "k_drag";
+  if (!has(k_thrust)) throw py::value_error("vehicle: no key 'k_eta' [N/(rad/s)^2]");
+  if (!has(k_moment)) throw py::value_error("vehicle: no key 'k_m' [N m/(rad/s)^2]");
+  v.thrust_coefficient = number(k_thrust);
+  if (!(v.thrust_coefficient > 0)) {
+    throw py::value_error(std::string("vehicle['") + k_thrust + "'] must be positive");
+  }
+  v.yaw_moment_per_thrust = number(k_moment) / v.thrust_coefficient;
+  if (!has("rotor_speed_max")) throw py::value_error("vehicle: no key 'rotor_speed_max' [rad/s]");
+  v.max_rotor_thrust = v.ThrustAtSpeed(number("rotor_speed_max"));
+  v.min_rotor_thrust = has("rotor_speed_min") ? v.ThrustAtSpeed(number("rotor_speed_min")) : 0.0;
+  if (has("tau_m")) {
+    used.insert("tau_m");
+    // RotorPy gives one time constant per rotor; MuJoCo's filter here has one for all
+    Array taus = Array::ensure(dict["tau_m"]);
+    if (!taus || taus.size() < 1) {
+      PyErr_Clear();
+      throw py::value_error("vehicle['tau_m']: expected a time constant [s] or one per rotor");
+    }
+    double sum = 0.0;
+    for (py::ssize_t i = 0; i < taus.size(); ++i) sum += taus.data()[i];
+    v.motor_time_constant = sum / static_cast<double>(taus.size());
+  }
+  if (has("rotor_pos")) {
+    used.insert("rotor_pos");
+    const py::handle rotor_pos = dict["rotor_pos"];
+    std::vector<Vec3> positions;
+    if (py::isinstance<py::dict>(rotor_pos)) {
+      for (const auto item : py::reinterpret_borrow<py::dict>(rotor_pos)) {
+        positions.push_back(PointFrom(
+            item.second, "vehicle['rotor_pos']['" + std::string(py::str(item.first)) + "']"));
+      }
+    } else {
+      positions = PointsFromArray(rotor_pos, "vehicle['rotor_pos']");
+    }
+    if (positions.size() != kNumRotors) {
+      throw py::value_error("vehicle['rotor_pos']: expected 4 rotors, got " +
+                            std::to_string(positions.size()));
+    }
+    for (int i = 0; i < kNumRotors; ++i) v.rotor_positions_B[i] = positions[i];
+  } else if (has("arm_length")) {
+    // flightsim's layout: "+" with rotors on +x, +y, -x, -y
+    const double l = number("arm_length");
+    v.rotor_positions_B = {Vec3(l, 0, 0), Vec3(0, l, 0), Vec3(-l, 0, 0), Vec3(0, -l, 0)};
+  } else {
+    throw py::value_error("vehicle: no key 'rotor_pos' (or 'arm_length') [m]");
+  }
+  if (has("rotor_directions")) {
+    used.insert("rotor_directions");
+    Vec4 directions = Require<4>(dict, "rotor_directions", who);
+    for (int i = 0; i < kNumRotors; ++i) {
+      if (std::abs(std::abs(directions[i]) - 1.0) > 1e-9) {
+        throw py::value_error("vehicle['rotor_directions']: expected +1 or -1 per rotor");
+      }
+      v.rotor_directions[i] = directions[i] > 0 ? 1 : -1;
+    }
+  }
+  // the collision box covers the rotor discs; its height is the Crazyflie's (29 mm)
+  double reach = 0.0;
+  for (const Vec3& r : v.rotor_positions_B) {
+    reach = std::max({reach, std::abs(r.x()), std::abs(r.y())});
+  }
+  const double radius = has("rotor_radius") ? number("rotor_radius") : 0.3 * reach;
+  v.propeller_radius = radius;
+  v.guard_radius = 1.05 * radius;
+  v.collision_size = Vec3(2 * (reach + radius), 2 * (reach + radius), 0.03);
+  for (const auto item : dict) {
+    const std::string key = py::str(item.first);
+    if (used.count(key) == 0) ignored->push_back(key);
+  }
+  try {
+    v.Validate();
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(std::string("vehicle: ") + e.what());
+  }
+  return v;
+}
+
+py::dict VehicleDict(const QuadParams& v) {
+  py::dict dict;
+  dict["mass"] = v.mass;
+  dict["Ixx"] = v.inertia.x();
+  dict["Iyy"] = v.inertia.y();
+  dict["Izz"] = v.inertia.z();
+  dict["Ixy"] = 0.0;
+  dict["Ixz"] = 0.0;
+  dict["Iyz"] = 0.0;
+  dict["num_rotors"] = kNumRotors;
+  py::dict rotor_pos;
+  for (int i = 0; i < kNumRotors; ++i) {
+    rotor_pos[py::str("r" + std::to_string(i + 1))] = Vec3Array(v.rotor_positions_B[i]);
+  }
+  dict["rotor_pos"] = rotor_pos;
+  const double directions[4] = {double(v.rotor_directions[0]), double(v.rotor_directions[1]),
+                                double(v.rotor_directions[2]), double(v.rotor_directions[3])};
+  dict["rotor_directions"] = VectorArray(directions, 4);
+  dict["rotor_radius"] = v.propeller_radius;
+  dict["k_eta"] = v.thrust_coefficient;
+  dict["k_m"] = v.yaw_moment_per_thrust * v.thrust_coefficient;
+  dict["rotor_speed_min"] = v.RotorSpeedFor(v.min_rotor_thrust);
+  dict["rotor_speed_max"] = v.RotorSpeedFor(v.max_rotor_thrust);
+  dict["tau_m"] = VectorArray(Vec4::Constant(v.motor_time_constant).eval().data(), 4);
+  dict["motor_noise_std"] = 0.0;
+  return dict;
+}
+
+py::dict WorldDict(const Map& map) {
+  const auto extents = [](const Aabb& box) {
+    py::list list;
+    for (int i = 0; i < 3; ++i) {
+      list.append(box.min[i]);
+      list.append(box.max[i]);
+    }
+    return list;
+  };
+  py::dict bounds;
+  bounds["extents"] = extents(map.bounds);
+  py::list blocks;
+  for (const Box& box : map.boxes) {
+    py::dict block;
+    block["extents"] = extents(box.extent);
+    block["color"] = py::make_tuple(box.rgb.x(), box.rgb.y(), box.rgb.z());
+    block["name"] = box.name;
+    blocks.append(block);
+  }
+  py::dict world;
+  world["bounds"] = bounds;
+  world["blocks"] = blocks;
+  return world;
+}
+
+PythonController::PythonController(py::object controller, const QuadParams& vehicle,
+                                   CommandChoice choice)
+    : vehicle_(vehicle), choice_(choice) {
+  if (!py::hasattr(controller, "update")) {
+    throw py::value_error("the controller has no update(t, state, flat_output) method");
+  }
+  update_ = controller.attr("update");
+}
+
+bool PythonController::Update(double t, const State& state, const FlatOutput& setpoint,
+                              ControlCommand* command) {
+  py::object answer;
+  try {
+    answer = update_(t, StateDict(state, last_thrusts_, vehicle_), FlatDict(setpoint));
+  } catch (py::error_already_set& e) {
+    // the user's own exception, with where it happened (Python 3.11's notes)
+    if (py::hasattr(e.value(), "add_note")) {
+      e.value().attr("add_note")("aerobox: raised by controller.update " + At("", t).substr(1));
+    }
+    throw;
+  }
+  *command = CommandFromDict(answer, choice_, vehicle_, t, "controller.update");
+  if (command->level == CommandLevel::kRotorThrusts) last_thrusts_ = command->rotor_thrusts;
+  return true;
+}
+
+Reference PythonReference(py::object trajectory, double t_final, bool* duration_known) {
+  if (!py::hasattr(trajectory, "update")) {
+    throw py::value_error("the trajectory has no update(t) method");
+  }
+  double duration = 0.0;
+  *duration_known = false;
+  for (const char* key : {"duration", "t_final"}) {
+    if (py::hasattr(trajectory, key) && !trajectory.attr(key).is_none()) {
+      duration = Number(trajectory.attr(key), std::string("trajectory.") + key);
+      *duration_known = true;
+      break;
+    }
+  }
+  if (t_final > 0 && (!*duration_known || t_final < duration)) duration = t_final;
+  if (!(duration > 0) && !(t_final > 0)) {
+    throw py::value_error(
+        "the trajectory has no duration: give it a duration [s] attribute or pass t_final");
+  }
+  struct Cache {
+    py::object update;
+    double t = std::numeric_limits<double>::quiet_NaN();
+    FlatOutput flat;
+    const FlatOutput& At(double time) {
+      if (!(time == t)) {
+        flat = FlatFromDict(update(time), time, "trajectory.update");
+        t = time;
+      }
+      return flat;
+    }
+  };
+  auto cache = std::make_shared<Cache>();
+  cache->update = trajectory.attr("update");
+  Reference reference;
+  reference.duration = duration;
+  reference.evaluate = [cache](double t, int derivative) -> Vec3 {
+    const FlatOutput& flat = cache->At(t);
+    switch (derivative) {
+      case 0:
+        return flat.p_W;
+      case 1:
+        return flat.v_W;
+      case 2:
+        return flat.a_W;
+      case 3:
+        return flat.j_W;
+      default:
+        return flat.s_W;
+    }
+  };
+  reference.heading = [cache](double t) {
+    const FlatOutput& flat = cache->At(t);
+    return std::make_pair(flat.yaw, flat.yaw_rate);
+  };
+  return reference;
+}
+
+PythonPlanner::PythonPlanner(py::object planner, py::dict world, const PlannerContext& context)
+    : planner_(std::move(planner)), world_(std::move(world)), context_(context) {
+  if (!py::hasattr(planner_, "plan")) {
+    throw py::value_error("the planner has no plan(world, start, goal) method");
+  }
+}
+
+PlanResult PythonPlanner::Plan(const Vec3& start, const Vec3& goal) {
+  PlanResult result;
+  const auto begin = std::chrono::steady_clock::now();
+  if (!context_.validity.state(start)) {
+    result.status = PlanStatus::kStartInvalid;
+    return result;
+  }
+  if (!context_.validity.state(goal)) {
+    result.status = PlanStatus::kGoalInvalid;
+    return result;
+  }
+  const py::object answer = planner_.attr("plan")(world_, Vec3Array(start), Vec3Array(goal));
+  result.stats.planning_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  if (answer.is_none()) {
+    result.status = PlanStatus::kNoPathWithinBudget;
+    return result;
+  }
+  std::vector<Vec3> path = PointsFromArray(answer, "planner.plan");
+  if (path.size() < 2) throw py::value_error("planner.plan: a path needs two points or more");
+  // the path goes from the start to the goal, each leg free
+  if ((path.front() - start).norm() > 1e-6) path.insert(path.begin(), start);
+  if ((path.back() - goal).norm() > 1e-6) path.push_back(goal);
+  for (size_t i = 0; i < path.size(); ++i) {
+    if (!context_.validity.state(path[i]) ||
+        (i > 0 && !context_.validity.motion(path[i - 1], path[i]))) {
+      result.status = PlanStatus::kPathBlocked;
+      result.stats.blocked_leg = static_cast<int>(i);
+      return result;
+    }
+  }
+  result.status = PlanStatus::kSolved;
+  double length = 0.0;
+  for (size_t i = 1; i < path.size(); ++i) length += (path[i] - path[i - 1]).norm();
+  result.stats.final_cost = length;
+  result.path = std::move(path);
+  return result;
+}
+
+PythonGenerator::PythonGenerator(py::object cls, double rate)
+    : class_(std::move(cls)), rate_(rate) {}
+
+TrajectoryResult PythonGenerator::Generate(const std::vector<Vec3>& path,
+                                           const TrajectoryWorld& world) {
+  const auto begin = std::chrono::steady_clock::now();
+  const py::object trajectory = class_(PointsArray(path));
+  bool known = false;
+  const Reference reference = PythonReference(trajectory, 0.0, &known);
+  std::vector<TrajectorySample> samples;
+  const long n = std::max(1L, std::lround(reference.duration * rate_));
+  for (long i = 0; i <= n; ++i) {
+    const double t = reference.duration * static_cast<double>(i) / static_cast<double>(n);
+    samples.push_back(
+        {t, reference.evaluate(t, 0), reference.evaluate(t, 1), reference.evaluate(t, 2)});
+  }
+  TrajectoryResult result;
+  result.trajectory = SampledTrajectory(samples);
+  result.waypoints = path;
+  result.stats.segments = static_cast<int>(n);
+  result.status = TrajectoryStatus::kSolved;
+  for (size_t i = 1; i < samples.size(); ++i) {
+    if (world.segment_free && !world.segment_free(samples[i - 1].p_W, samples[i].p_W)) {
+      result.status = TrajectoryStatus::kCollides;
+      result.stats.solver_message =
+          "the Python trajectory leaves free space at t = " + FormatNumber(samples[i].t) + " s";
+      break;
+    }
+  }
+  if (result.status == TrajectoryStatus::kSolved) result.stats.solver_message = "Python";
+  MeasureTrajectory(TrajectoryParams(), &result);
+  result.stats.solve_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  return result;
+}
+
+py::object LoadClass(const std::string& spec) {
+  const size_t colon = spec.rfind(':');
+  if (colon == std::string::npos || colon == 0 || colon + 1 == spec.size()) {
+    throw py::value_error("'" + spec + "': expected file.py:ClassName");
+  }
+  const std::filesystem::path file = std::filesystem::absolute(spec.substr(0, colon));
+  const std::string class_name = spec.substr(colon + 1);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) {
+    throw py::value_error("'" + file.string() + "': no such Python file");
+  }
+  const py::module_ util = py::module_::import("importlib.util");
+  const std::string module_name = "aerobox_user_" + file.stem().string();
+  const py::object module_spec = util.attr("spec_from_file_location")(module_name, file.string());
+  const py::object module = util.attr("module_from_spec")(module_spec);
+  py::module_::import("sys").attr("modules")[py::str(module_name)] = module;
+  // the file's own folder first, so that its sibling modules import
+  py::list sys_path = py::module_::import("sys").attr("path");
+  if (!sys_path.contains(file.parent_path().string()))
+    sys_path.insert(0, file.parent_path().string());
+  module_spec.attr("loader").attr("exec_module")(module);
+  if (!py::hasattr(module, class_name.c_str())) {
+    throw py::value_error("'" + file.string() + "' has no class '" + class_name + "'");
+  }
+  return module.attr(class_name.c_str());
+}
+
+}  // namespace aerobox::python

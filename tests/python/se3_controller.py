@@ -1,0 +1,84 @@
+"""A geometric SE(3) controller (Lee, Leok and McClamroch 2010) in RotorPy's contract, written
+for the tests: SE3Control(quad_params).update(t, state, flat_output) -> dict. It knows aerobox
+only through the quad_params dict and the state and flat-output dicts."""
+
+import numpy as np
+
+
+def rotation_matrix(q):
+    """Body-to-world rotation from a quaternion [i, j, k, w]."""
+    x, y, z, w = q
+    return np.array([
+        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+    ])
+
+
+def quaternion(R):
+    """[i, j, k, w] of a rotation matrix (Shepperd's method, w >= 0 branch first)."""
+    trace = np.trace(R)
+    if trace > 0:
+        s = 2.0 * np.sqrt(1.0 + trace)
+        return np.array([(R[2, 1] - R[1, 2]) / s, (R[0, 2] - R[2, 0]) / s,
+                         (R[1, 0] - R[0, 1]) / s, 0.25 * s])
+    i = int(np.argmax(np.diag(R)))
+    j, k = (i + 1) % 3, (i + 2) % 3
+    s = 2.0 * np.sqrt(1.0 + R[i, i] - R[j, j] - R[k, k])
+    q = np.zeros(4)
+    q[i] = 0.25 * s
+    q[j] = (R[j, i] + R[i, j]) / s
+    q[k] = (R[k, i] + R[i, k]) / s
+    q[3] = (R[k, j] - R[j, k]) / s
+    return q
+
+
+class SE3Control:
+    GRAVITY = 9.81
+
+    def __init__(self, quad_params):
+        self.mass = quad_params["mass"]
+        self.inertia = np.diag([quad_params["Ixx"], quad_params["Iyy"], quad_params["Izz"]])
+        k_eta, k_m = quad_params["k_eta"], quad_params["k_m"]
+        positions = np.array(list(quad_params["rotor_pos"].values()))
+        directions = np.asarray(quad_params["rotor_directions"], dtype=float)
+        # [thrust; moments] = allocation @ rotor thrusts
+        allocation = np.vstack([np.ones(4), positions[:, 1], -positions[:, 0],
+                                directions * k_m / k_eta])
+        self.to_rotors = np.linalg.inv(allocation)
+        self.min_thrust = k_eta * quad_params["rotor_speed_min"] ** 2
+        self.max_thrust = k_eta * quad_params["rotor_speed_max"] ** 2
+        self.k_eta = k_eta
+        # position loop [1/s^2, 1/s] and attitude loop [1/s^2, 1/s], scaled by mass and inertia
+        self.kp = np.array([6.5, 6.5, 15.0])
+        self.kd = np.array([4.0, 4.0, 9.0])
+        self.kr = 544.0
+        self.kw = 46.6
+
+    def update(self, t, state, flat_output):
+        e_p = state["x"] - flat_output["x"]
+        e_v = state["v"] - flat_output["x_dot"]
+        force = self.mass * (-self.kp * e_p - self.kd * e_v + flat_output["x_ddot"]
+                             + np.array([0.0, 0.0, self.GRAVITY]))
+        R = rotation_matrix(state["q"])
+        thrust = float(force @ R[:, 2])
+        b3 = force / np.linalg.norm(force)
+        yaw = flat_output["yaw"]
+        c1 = np.array([np.cos(yaw), np.sin(yaw), 0.0])
+        b2 = np.cross(b3, c1)
+        b2 /= np.linalg.norm(b2)
+        R_des = np.column_stack([np.cross(b2, b3), b2, b3])
+        S = 0.5 * (R_des.T @ R - R.T @ R_des)
+        e_R = np.array([S[2, 1], S[0, 2], S[1, 0]])
+        w = state["w"]
+        moment = self.inertia @ (-self.kr * e_R - self.kw * w) + np.cross(w, self.inertia @ w)
+        thrusts = self.to_rotors @ np.concatenate([[thrust], moment])
+        thrusts = np.clip(thrusts, self.min_thrust, self.max_thrust)
+        return {
+            "cmd_motor_thrusts": thrusts,
+            "cmd_motor_speeds": np.sqrt(thrusts / self.k_eta),
+            "cmd_thrust": thrust,
+            "cmd_moment": moment,
+            "cmd_q": quaternion(R_des),
+            "cmd_w": np.zeros(3),
+        }

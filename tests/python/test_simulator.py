@@ -1,0 +1,274 @@
+"""import aerobox: the package flies Python controllers and trajectories in aerobox's physics,
+with the success checks of the command's flights (DESIGN.md: reached, no contact, clearance,
+tracking), and refuses bad commands with the key and the time."""
+
+import math
+import os
+import sys
+import tempfile
+import unittest
+
+import numpy as np
+
+import aerobox
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+from se3_controller import SE3Control  # noqa: E402
+from user_parts import Smoothstep, WindowPlanner  # noqa: E402
+
+SOURCE = os.environ.get("AEROBOX_SOURCE_DIR", os.path.join(HERE, "..", ".."))
+WINDOW = os.path.join(SOURCE, "scenes", "window", "scenario.toml")
+
+
+def assert_success(test, result):
+    """The scenario tests' criteria: the goal reached, no contact, a positive clearance,
+    tracking RMS under 6 cm and at most 15 cm."""
+    test.assertEqual(result["status"], "reached goal")
+    test.assertEqual(result["collisions"], 0)
+    test.assertGreater(result["min_clearance"], 0.0)
+    test.assertLess(result["tracking_rms"], 0.06)
+    test.assertLess(result["tracking_max"], 0.15)
+
+
+def empty_map(folder, size=6.0, height=4.0):
+    path = os.path.join(folder, "open.txt")
+    with open(path, "w") as file:
+        file.write(f"boundary {-size} {-size} 0 {size} {size} {height}\n")
+    return path
+
+
+class Circle:
+    """A horizontal circle of radius r [m] at height z [m] and period T [s], its angular speed
+    rising over the first `ramp` seconds (a quintic smoothstep), so that it starts at rest."""
+
+    def __init__(self, r=1.0, z=1.5, period=4.0, laps=2, ramp=2.0):
+        self.r, self.z, self.omega, self.ramp = r, z, 2 * math.pi / period, ramp
+        self.duration = laps * period + ramp / 2
+
+    def _angle(self, t):
+        """The angle [rad] and its first two derivatives."""
+        w, ramp = self.omega, self.ramp
+        if t >= ramp:
+            return w * (t - ramp / 2), w, 0.0
+        s = t / ramp
+        return (w * ramp * (2.5 * s**4 - 3 * s**5 + s**6),
+                w * (10 * s**3 - 15 * s**4 + 6 * s**5),
+                w * (30 * s**2 - 60 * s**3 + 30 * s**4) / ramp)
+
+    def update(self, t):
+        a, da, dda = self._angle(t)
+        r, c, s = self.r, math.cos(a), math.sin(a)
+        return {
+            "x": np.array([r * c, r * s, self.z]),
+            "x_dot": np.array([-r * s * da, r * c * da, 0.0]),
+            "x_ddot": np.array([-r * c * da * da - r * s * dda, -r * s * da * da + r * c * dda,
+                                0.0]),
+            "x_dddot": np.zeros(3), "x_ddddot": np.zeros(3), "yaw": 0.0, "yaw_dot": 0.0,
+        }
+
+
+class WindowFlights(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.scenario = aerobox.load_scenario(WINDOW)
+        cls.path = aerobox.plan(cls.scenario, seed=cls.scenario.seed)
+        cls.trajectory = aerobox.min_snap(cls.scenario, cls.path)
+        cls.sim = aerobox.Simulator(cls.scenario)
+
+    def test_api_shapes_and_units(self):
+        self.assertEqual(self.path.shape[1], 3)
+        np.testing.assert_allclose(self.path[0], self.scenario.start, atol=0.2)
+        self.assertGreater(self.trajectory.duration, 5.0)
+        flat = self.trajectory.update(0.0)
+        self.assertEqual(set(flat), {"x", "x_dot", "x_ddot", "x_dddot", "x_ddddot", "yaw",
+                                     "yaw_dot"})
+        np.testing.assert_allclose(flat["x"], self.path[0], atol=1e-9)
+        state = self.sim.reset()
+        self.assertEqual(state["q"].shape, (4,))
+        self.assertAlmostEqual(state["q"][3], 1.0)  # [i, j, k, w]: level at rest
+        doc = aerobox.Simulator.__doc__ + aerobox.Simulator.run.__doc__
+        for words in ("ENU", "[i, j, k, w]", "body", "[m]", "[N]", "[rad/s]", "[Hz]"):
+            self.assertIn(words, aerobox.__doc__ + doc)
+
+    def test_python_se3_controller_flies_the_window(self):
+        result = self.sim.run(SE3Control(self.sim.quad_params), self.trajectory, control_rate=500)
+        assert_success(self, result)
+        n = len(result["time"])
+        self.assertEqual(result["state"]["x"].shape, (n, 3))
+        self.assertEqual(result["state"]["q"].shape, (n, 4))
+        self.assertEqual(result["control"]["cmd_motor_thrusts"].shape, (n, 4))
+        self.assertAlmostEqual(result["time"][1] - result["time"][0], 1 / 500, places=9)
+        # the flight ends at the goal
+        np.testing.assert_allclose(result["state"]["x"][-1], self.path[-1], atol=0.1)
+
+    def test_the_same_seed_gives_the_same_flight(self):
+        controller = SE3Control(self.sim.quad_params)
+        a = self.sim.run(controller, self.trajectory, control_rate=250)
+        b = self.sim.run(controller, self.trajectory, control_rate=250)
+        np.testing.assert_array_equal(a["state"]["x"], b["state"]["x"])
+
+    def test_each_command_key_flies_the_cascade_s_own_commands(self):
+        # the built-in cascade at 1 kHz is the reference; the same cascade as a Python object
+        # answers with every level at once, and each level, flown alone, gives the same flight
+        reference = self.sim.run("cascade", self.trajectory, t_final=6.0, control_rate=1000)
+        self.assertEqual(reference["collisions"], 0)
+        for command in ("cmd_ctatt", "cmd_ctbr", "cmd_ctbm", "cmd_motor_thrusts",
+                        "cmd_motor_speeds"):
+            with self.subTest(command=command):
+                wrapped = aerobox.builtin_controller(self.sim, "cascade", rate=1000)
+                flown = self.sim.run(wrapped, self.trajectory, t_final=6.0, control_rate=1000,
+                                     command=command)
+                self.assertEqual(len(flown["time"]), len(reference["time"]))
+                gap = np.abs(flown["state"]["x"] - reference["state"]["x"]).max()
+                self.assertLess(gap, 1e-6, f"{command}: {gap} m from the cascade's flight")
+
+    def test_python_planner_and_python_trajectory(self):
+        world = self.scenario.map.world()
+        self.assertEqual(len(world["blocks"]), len(self.scenario.map.boxes))
+        start, goal = self.path[0], self.path[-1]
+        waypoints = WindowPlanner().plan(world, start, goal)
+        for a, b in zip(waypoints[:-1], waypoints[1:]):
+            for s in np.linspace(0, 1, 50):
+                self.assertGreater(self.scenario.map.clearance(a + s * (b - a)), 0.0)
+        # the user's waypoints through aerobox's min-snap, and the user's own trajectory
+        ours = aerobox.min_snap(self.scenario, waypoints)
+        assert_success(self, self.sim.run(SE3Control(self.sim.quad_params), ours))
+        theirs = Smoothstep(waypoints)
+        result = self.sim.run(SE3Control(self.sim.quad_params), theirs)
+        assert_success(self, result)
+
+    def test_write_outputs_writes_what_fly_writes(self):
+        result = self.sim.run(SE3Control(self.sim.quad_params), self.trajectory, t_final=3.0)
+        with tempfile.TemporaryDirectory() as folder:
+            out = aerobox.write_outputs(result, os.path.join(folder, "run"), video=True,
+                                        size=(160, 120), fps=10)
+            names = set(os.listdir(out))
+            for name in ("path.csv", "trajectory.csv", "telemetry.csv", "summary.json",
+                         "overview.png", "video.mp4"):
+                self.assertIn(name, names)
+            import json
+            with open(os.path.join(out, "summary.json")) as file:
+                summary = json.load(file)
+            self.assertEqual(summary["controller"], "python:SE3Control")
+            self.assertAlmostEqual(summary["tracking_rms_m"], result["tracking_rms"])
+            with open(os.path.join(out, "telemetry.csv")) as file:
+                rows = file.read().splitlines()
+            self.assertEqual(len(rows) - 1, len(result["time"]))
+            with self.assertRaises(ValueError):
+                aerobox.write_outputs(result, os.path.join(folder, "bad"), size=(161, 120))
+            self.assertFalse(os.path.exists(os.path.join(folder, "bad", "summary.json")))
+
+
+class BadCommands(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.folder = tempfile.TemporaryDirectory()
+        cls.sim = aerobox.Simulator(empty_map(cls.folder.name), start=[0, 0, 1])
+        cls.hover = Circle(r=0.0)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.folder.cleanup()
+
+    def fly(self, answer):
+        class Controller:
+            def update(self, t, state, flat_output):
+                return answer(t)
+
+        return self.sim.run(Controller(), self.hover, t_final=1.0)
+
+    def test_an_exception_in_update_is_the_user_s_own_with_the_time(self):
+        def answer(t):
+            if t >= 0.499:
+                raise ZeroDivisionError("boom")
+            return {"cmd_motor_thrusts": np.full(4, 0.196)}
+
+        with self.assertRaises(ZeroDivisionError) as raised:
+            self.fly(answer)
+        notes = " ".join(getattr(raised.exception, "__notes__", []))
+        self.assertIn("controller.update at t = 0.5 s", notes)
+
+    def test_nan_wrong_key_wrong_shape_and_not_a_dict(self):
+        cases = {
+            "'cmd_motor_thrusts' is not finite": lambda t: {"cmd_motor_thrusts": np.full(4, math.nan)},
+            "none of cmd_motor_thrusts": lambda t: {"thrusts": np.ones(4)},
+            "'cmd_moment' has shape (2,), expected (3,)": lambda t: {"cmd_thrust": 0.8,
+                                                                     "cmd_moment": np.zeros(2)},
+            "no key 'cmd_thrust'": lambda t: {"cmd_w": np.zeros(3)},
+            "returned a list, expected a dict": lambda t: [0.2, 0.2, 0.2, 0.2],
+        }
+        for message, answer in cases.items():
+            with self.subTest(message=message):
+                with self.assertRaises(ValueError) as raised:
+                    self.fly(answer)
+                self.assertIn(message, str(raised.exception))
+                self.assertIn("at t = 0 s", str(raised.exception))
+
+    def test_extra_keys_are_ignored_and_step_works(self):
+        result = self.fly(lambda t: {"cmd_motor_thrusts": np.full(4, 0.08 * 9.81 / 4),
+                                     "cmd_v": "anything"})
+        self.assertEqual(result["collisions"], 0)
+        self.sim.reset()
+        state = self.sim.step({"cmd_thrust": 0.08 * 9.81, "cmd_q": [0, 0, 0, 1]}, 0.01)
+        self.assertAlmostEqual(self.sim.time, 0.01, places=9)
+        self.assertLess(np.linalg.norm(state["x"] - [0, 0, 1]), 1e-3)
+        with self.assertRaises(ValueError):
+            self.sim.step({"cmd_thrust": 0.8, "cmd_q": [0, 0, 0, 1]}, 0.0015)
+
+
+class RotorPyVehicle(unittest.TestCase):
+    # a Crazyflie-class vehicle as RotorPy's quad_params dict lists it (values from RotorPy's
+    # crazyflie_params: Foerster 2015 and Bitcraze's measurements)
+    ARM = 0.043
+    QUAD_PARAMS = {
+        "mass": 0.03, "Ixx": 1.43e-5, "Iyy": 1.43e-5, "Izz": 2.89e-5,
+        "Ixy": 0.0, "Iyz": 0.0, "Ixz": 0.0,
+        "num_rotors": 4,
+        "rotor_pos": {
+            "r1": ARM * np.array([0.70710678118, 0.70710678118, 0]),
+            "r2": ARM * np.array([0.70710678118, -0.70710678118, 0]),
+            "r3": ARM * np.array([-0.70710678118, -0.70710678118, 0]),
+            "r4": ARM * np.array([-0.70710678118, 0.70710678118, 0]),
+        },
+        "rotor_directions": np.array([1, -1, 1, -1]),
+        "rotor_radius": 0.025,
+        "c_Dx": 0.5e-2, "c_Dy": 0.5e-2, "c_Dz": 1e-2,
+        "k_eta": 2.3e-08, "k_m": 7.8e-10, "k_d": 10.2506e-07, "k_z": 7.553e-07,
+        "k_h": 1.69e-2, "k_flap": 0.0,
+        "tau_m": 0.005, "rotor_speed_min": 0, "rotor_speed_max": 2500, "motor_noise_std": 100,
+    }
+
+    def test_hovers_and_tracks_a_circle(self):
+        with tempfile.TemporaryDirectory() as folder:
+            sim = aerobox.Simulator(empty_map(folder), vehicle=self.QUAD_PARAMS, start=[1, 0, 1.5])
+            for key in ("Ixy", "c_Dx", "k_d", "motor_noise_std"):
+                self.assertIn(key, sim.ignored_vehicle_keys)
+            for key in ("mass", "rotor_pos", "k_eta", "tau_m"):
+                self.assertNotIn(key, sim.ignored_vehicle_keys)
+            self.assertAlmostEqual(sim.quad_params["mass"], 0.03)
+            controller = SE3Control(sim.quad_params)
+            hover = sim.run(controller, Circle(r=0.0, laps=1))
+            self.assertEqual(hover["status"], "reached goal")
+            self.assertGreater(hover["flight_time"], 4.0)
+            self.assertLess(hover["tracking_max"], 0.005)
+            circle = sim.run(controller, Circle(r=1.0, period=6.0, laps=1), t_final=7.0)
+            # a circle does not end at rest: the run ends at t_final, with no contact
+            self.assertEqual(circle["collisions"], 0)
+            self.assertAlmostEqual(circle["flight_time"], 7.0, places=6)
+            self.assertLess(circle["tracking_rms"], 0.03)
+            # the rotor thrusts stayed within the dict's k_eta * rotor_speed_max^2
+            self.assertLessEqual(circle["rotor_thrusts"].max(), 2.3e-8 * 2500**2 + 1e-12)
+
+    def test_a_bad_dict_names_the_key(self):
+        bad = dict(self.QUAD_PARAMS)
+        del bad["k_eta"]
+        with tempfile.TemporaryDirectory() as folder:
+            with self.assertRaisesRegex(ValueError, "k_eta"):
+                aerobox.Simulator(empty_map(folder), vehicle=bad)
+            with self.assertRaisesRegex(ValueError, "num_rotors"):
+                aerobox.Simulator(empty_map(folder), vehicle=dict(self.QUAD_PARAMS, num_rotors=6))
+
+
+if __name__ == "__main__":
+    unittest.main()
