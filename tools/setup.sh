@@ -23,6 +23,8 @@ packages=(
   libcli11-dev libtomlplusplus-dev libbenchmark-dev
   # src/telemetry: summary.json
   nlohmann-json3-dev
+  # src/python: the aerobox package (pybind11, Debian's python3 with numpy)
+  pybind11-dev python3-dev python3-numpy
   # tests/
   doctest-dev
   # tools/plot_telemetry.py (run by tools/fly.sh, tested by tools/test.sh)

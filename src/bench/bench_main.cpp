@@ -12,6 +12,7 @@
 #include "bench/city_benchmark.h"
 #include "bench/flight_benchmark.h"
 #include "bench/planner_comparison.h"
+#include "bench/python_benchmark.h"
 #include "bench/render_benchmark.h"
 #include "bench/solver_comparison.h"
 #include "common/error.h"
@@ -85,6 +86,13 @@ int RunBench(const std::string& sections, const std::string& scenes, const std::
     SpeedTable(scenes, maps, out);
     out << "\n";
   }
+  if (wanted("python")) {
+    out << "## A Python controller against the C++ ones (the aerobox package)\n\n" << std::flush;
+    const std::string window =
+        (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
+    RunPythonBenchmark(window, out);
+    out << "\n";
+  }
   if (wanted("city")) {
     out << "## City scale: the FCND map, 50 queries 600-700 m apart\n\n";
     if (city.empty()) {
@@ -126,7 +134,7 @@ int main(int argc, char** argv) {
   int bench_seeds = 20;
   double bench_seconds = 1.0;
   app.add_option("--sections", bench_sections,
-                 "all, or some of: trajectory,flight,render,speed,city,planning")
+                 "all, or some of: trajectory,flight,render,speed,python,city,planning")
       ->capture_default_str();
   app.add_option("--scenes", bench_scenes, "folder with the scenes")->capture_default_str();
   app.add_option("--maps", bench_maps, "comma-separated scene names")->capture_default_str();

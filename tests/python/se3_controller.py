@@ -2,7 +2,15 @@
 for the tests: SE3Control(quad_params).update(t, state, flat_output) -> dict. It knows aerobox
 only through the quad_params dict and the state and flat-output dicts."""
 
+import math
+
 import numpy as np
+
+
+def cross(a, b):
+    """a x b for 3-vectors (numpy's cross is general, and slow on one pair)."""
+    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                     a[0] * b[1] - a[1] * b[0]])
 
 
 def rotation_matrix(q):
@@ -62,18 +70,18 @@ class SE3Control:
                              + np.array([0.0, 0.0, self.GRAVITY]))
         R = rotation_matrix(state["q"])
         thrust = float(force @ R[:, 2])
-        b3 = force / np.linalg.norm(force)
+        b3 = force / math.sqrt(force @ force)
         yaw = flat_output["yaw"]
-        c1 = np.array([np.cos(yaw), np.sin(yaw), 0.0])
-        b2 = np.cross(b3, c1)
-        b2 /= np.linalg.norm(b2)
-        R_des = np.column_stack([np.cross(b2, b3), b2, b3])
+        c1 = np.array([math.cos(yaw), math.sin(yaw), 0.0])
+        b2 = cross(b3, c1)
+        b2 /= math.sqrt(b2 @ b2)
+        R_des = np.column_stack([cross(b2, b3), b2, b3])
         S = 0.5 * (R_des.T @ R - R.T @ R_des)
         e_R = np.array([S[2, 1], S[0, 2], S[1, 0]])
         w = state["w"]
-        moment = self.inertia @ (-self.kr * e_R - self.kw * w) + np.cross(w, self.inertia @ w)
+        moment = self.inertia @ (-self.kr * e_R - self.kw * w) + cross(w, self.inertia @ w)
         thrusts = self.to_rotors @ np.concatenate([[thrust], moment])
-        thrusts = np.clip(thrusts, self.min_thrust, self.max_thrust)
+        thrusts = np.minimum(np.maximum(thrusts, self.min_thrust), self.max_thrust)
         return {
             "cmd_motor_thrusts": thrusts,
             "cmd_motor_speeds": np.sqrt(thrusts / self.k_eta),
