@@ -379,7 +379,12 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
                   "also write frames/frame_NNNNNN.png every this many seconds of flight");
 
   double max_speed = 0, max_accel = 0;
+  std::string objective;
   for (CLI::App* command : {plan, fly}) {
+    command->add_option("--objective", objective,
+                        "the trajectory's time allocation: min-time (default: as fast as the "
+                        "vehicle's limits and margins allow) or snap (scaled to --max-speed and "
+                        "--max-accel) ([trajectory] objective)");
     command->add_option("--max-speed", max_speed,
                         "the trajectory's speed limit [m/s] ([trajectory] max_speed)");
     command->add_option("--max-accel", max_accel,
@@ -434,6 +439,13 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     overrides.goal = ParsePointOption(goal_text, "--goal");
     if (seed_given) overrides.seed = seed;
     FlightSetup setup = LoadFlightSetup(input, overrides);
+    if (!objective.empty()) {
+      if (objective != "min-time" && objective != "snap") {
+        throw InputError({"command line", 0}, "--objective", "expected min-time or snap");
+      }
+      setup.planning.trajectory.objective =
+          objective == "snap" ? TimeObjective::kSnap : TimeObjective::kMinTime;
+    }
     if (max_speed != 0) {
       if (!(max_speed >= 0.01 && max_speed <= 8.0)) {
         throw InputError({"command line", 0}, "--max-speed",

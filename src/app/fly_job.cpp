@@ -152,6 +152,11 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
         << plan.result.stats.planning_time << " s\n"
         << "  trajectory  " << trajectory.stats.duration << " s, max " << trajectory.stats.max_speed
         << " m/s, solved in " << trajectory.stats.solve_time << " s"
+        << (trajectory.stats.binding_limit.limit.empty()
+                ? std::string()
+                : " (" + trajectory.stats.binding_limit.limit + " at " +
+                      FormatNumber(std::round(trajectory.stats.binding_limit.ratio * 100)) +
+                      " % of its limit)")
         << (trajectory.stats.solver_message.find("after Ipopt") != std::string::npos
                 ? " (" + trajectory.stats.solver_message + ")"
                 : std::string())

@@ -11,6 +11,18 @@ CascadeController::CascadeController(const PositionControlParams& params, double
   last_.thrust = mass * kGravity;
 }
 
+Vec3 RateFeedForward(const FlatOutput& setpoint, const Quat& q_WB) {
+  // the thrust axis turns with the part of the jerk across it, at 1 / |a + g| (Mellinger and
+  // Kumar 2011, eq. 7); yaw turns about the world's z
+  const Vec3 thrust = setpoint.a_W + Vec3(0, 0, kGravity);
+  const double norm = thrust.norm();
+  if (!(norm > 1e-3) || !setpoint.j_W.allFinite()) return Vec3::Zero();
+  const Mat3 R = q_WB.toRotationMatrix();
+  const Vec3 z_b = R.col(2);
+  const Vec3 h = (setpoint.j_W - z_b.dot(setpoint.j_W) * z_b) / norm;
+  return Vec3(-h.dot(R.col(1)), h.dot(R.col(0)), setpoint.yaw_rate * z_b.z());
+}
+
 bool CascadeController::Update(double, const State& state, const FlatOutput& setpoint,
                                ControlCommand* command) {
   PositionSetpoint target;
@@ -25,6 +37,7 @@ bool CascadeController::Update(double, const State& state, const FlatOutput& set
   command->level = CommandLevel::kThrustAttitude;
   command->thrust = last_.thrust;
   command->q_WB = last_.q_WB;
+  command->rate_B = RateFeedForward(setpoint, last_.q_WB);
   return true;
 }
 

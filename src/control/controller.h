@@ -28,8 +28,10 @@ struct ControlCommand {
   Vec4 rotor_thrusts = Vec4::Zero();  // [N], rotor order of vehicle/quad_params.h
   double thrust = 0.0;                // collective thrust along the body's z [N]
   Vec3 moment_B = Vec3::Zero();       // body moments [N m]
-  Vec3 rate_B = Vec3::Zero();         // body rates [rad/s]
-  Quat q_WB = Quat::Identity();       // attitude, body to world
+  // body rates [rad/s]; with kThrustAttitude, a feed-forward added to what the attitude loop
+  // asks (zero: none)
+  Vec3 rate_B = Vec3::Zero();
+  Quat q_WB = Quat::Identity();  // attitude, body to world
 };
 
 class Controller {

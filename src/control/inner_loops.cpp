@@ -55,7 +55,9 @@ bool InnerLoops::Run(const ControlCommand& command, const State& state, double d
       return true;
     }
     case CommandLevel::kThrustAttitude:
-      ok = attitude_.Update(state.q_WB, command.q_WB, &out->rate_setpoint_B);
+      ok = attitude_.Update(state.q_WB, command.q_WB, &out->rate_setpoint_B) &&
+           command.rate_B.allFinite();
+      out->rate_setpoint_B += command.rate_B;  // the command's feed-forward
       break;
     case CommandLevel::kThrustRates:
       out->rate_setpoint_B = command.rate_B;

@@ -114,7 +114,16 @@ double ReachableAcceleration(const FlightSetup& setup) {
 
 std::string LimitsWarning(const FlightSetup& setup) {
   const double reachable = ReachableAcceleration(setup);
-  const double asked = setup.planning.trajectory.max_accel;
+  const double asked = TrajectoryParamsFor(setup).max_accel;
+  if (setup.planning.trajectory.objective == TimeObjective::kMinTime) {
+    // the vehicle's limits decide; a cap above them only does nothing
+    const double tilt = setup.controller.kind == "se3" ? setup.controller.se3.max_tilt
+                                                       : setup.controller.cascade.max_tilt;
+    if (setup.planning.trajectory.max_tilt < tilt) return "";
+    return "the trajectory may tilt " + FormatNumber(setup.planning.trajectory.max_tilt) +
+           " rad, the controller only " + FormatNumber(tilt) +
+           " rad: expect it to lag behind ([trajectory] max_tilt)";
+  }
   if (asked <= reachable) return "";
   return "the trajectory may accelerate at " + FormatNumber(asked) + " m/s^2, but this vehicle " +
          "reaches about " + FormatNumber(std::floor(reachable * 10) / 10) +
@@ -236,6 +245,27 @@ LatticeParams LatticeParamsFor(const FlightSetup& setup) {
   return params;
 }
 
+TrajectoryParams TrajectoryParamsFor(const FlightSetup& setup) {
+  TrajectoryParams params = setup.planning.trajectory;
+  if (params.objective == TimeObjective::kSnap) {
+    // the snap objective scales to its limits: without caps, its own defaults
+    const TrajectoryParams snap;
+    if (!std::isfinite(params.max_speed)) params.max_speed = snap.max_speed;
+    if (!std::isfinite(params.max_accel)) params.max_accel = snap.max_accel;
+    return params;
+  }
+  const QuadParams& v = setup.vehicle;
+  FlatnessLimits& limits = params.vehicle;
+  limits.mass = v.mass;
+  limits.inertia = v.inertia;
+  limits.allocation = AllocationMatrix(v);
+  limits.min_rotor_thrust = v.MinRotorThrust();
+  limits.max_rotor_thrust = v.MaxRotorThrust();
+  limits.max_speed = v.max_speed;
+  limits.yaw = 0.0;  // the flight holds the start's yaw, level at rest (FlyTrajectory)
+  return params;
+}
+
 TrajectoryResult TrajectoryAlong(const FlightSetup& setup, const std::vector<Vec3>& path) {
   const PlanningSettings& settings = setup.planning;
   const CollisionWorld trajectory_world(setup.map, setup.TrajectoryCollision());
@@ -246,7 +276,7 @@ TrajectoryResult TrajectoryAlong(const FlightSetup& setup, const std::vector<Vec
       }};
   GeneratorConfig config;
   config.method = settings.trajectory_method;
-  config.params = settings.trajectory;
+  config.params = TrajectoryParamsFor(setup);
   config.params.ipopt.injected_failure = InjectedFault("ipopt").has_value();  // fault tests only
   config.given = settings.given_trajectory;
   return MakeGenerator(config)->Generate(path, view);

@@ -76,6 +76,9 @@ PlanOutcome PlanFlight(const FlightSetup& setup, bool with_trajectory = true);
 // The lattice PlanFlight builds for `setup` (altitudes counted from the map's floor).
 LatticeParams LatticeParamsFor(const FlightSetup& setup);
 
+// The trajectory generator's parameters for the set-up: min-time gets the vehicle's mass,
+// inertia, allocation, rotor range and top speed; snap without caps gets its 2 m/s, 2 m/s^2.
+TrajectoryParams TrajectoryParamsFor(const FlightSetup& setup);
 // PlanFlight's second half: the trajectory along `path`, keeping the trajectory clearance. With
 // a baseline method, min-snap's waypoints and segment times carry the baseline's polynomials.
 TrajectoryResult TrajectoryAlong(const FlightSetup& setup, const std::vector<Vec3>& path);

@@ -2,6 +2,7 @@
 // the trajectory generator's.
 #pragma once
 
+#include <limits>
 #include <string>
 
 #include "geometry/collision_world.h"
@@ -35,7 +36,16 @@ struct PlanningSettings {
   // when RRT* finds no path, a fine lattice over the map searches it exhaustively
   bool lattice_fallback = true;
   LatticeParams lattice;  // altitudes relative to the map's floor: see PlanFlight
-  TrajectoryParams trajectory;
+  // min-time by default: the vehicle's limits (filled from QuadParams by TrajectoryAlong) and
+  // the margins decide; max_speed and max_accel are caps only when a scenario sets them. With
+  // objective "snap" and no caps, the snap objective's 2 m/s and 2 m/s^2.
+  TrajectoryParams trajectory = [] {
+    TrajectoryParams p;
+    p.objective = TimeObjective::kMinTime;
+    p.max_speed = std::numeric_limits<double>::infinity();
+    p.max_accel = std::numeric_limits<double>::infinity();
+    return p;
+  }();
   // a name in TrajectoryGenerators(): minsnap (ours), a baseline on min-snap's waypoints and
   // times (trajectory/baselines.h), or "given" with the samples below
   std::string trajectory_method = "minsnap";

@@ -14,10 +14,25 @@ void AddPoint(JsonObject* json, const std::string& key, const Vec3& p) {
   json->Add(key, std::vector<double>{p.x(), p.y(), p.z()});
 }
 
+// The speed the trajectory kept below [m/s]: the cap, or with min-time the vehicle's top speed
+// when that is lower.
+double SpeedLimit(const FlightSetup& setup) {
+  const TrajectoryParams params = TrajectoryParamsFor(setup);
+  return params.objective == TimeObjective::kMinTime ? EffectiveLimits(params).max_speed
+                                                     : params.max_speed;
+}
+
 }  // namespace
 
 std::string TrackingNote(const FlightSetup& setup, const FlightResult& flight) {
   if (flight.max_error <= kLargeTrackingError) return "";
+  const TrajectoryParams& params = setup.planning.trajectory;
+  if (params.objective == TimeObjective::kMinTime) {
+    return "the vehicle was up to " + FormatNumber(std::round(flight.max_error * 100) / 100) +
+           " m off its trajectory: the trajectory's margins (thrust_margin " +
+           FormatNumber(params.thrust_margin) + ", max_tilt " + FormatNumber(params.max_tilt) +
+           " rad) leave the controller too little";
+  }
   return "the vehicle was up to " + FormatNumber(std::round(flight.max_error * 100) / 100) +
          " m off its trajectory: the limits (" + FormatNumber(setup.planning.trajectory.max_speed) +
          " m/s, " + FormatNumber(setup.planning.trajectory.max_accel) +
@@ -47,8 +62,15 @@ JsonObject RunSummary(const FlightSetup& setup, const MissionResult& result,
         .Add("trajectory_duration_s", trajectory.stats.duration)
         .Add("trajectory_max_speed_mps", trajectory.stats.max_speed)
         .Add("trajectory_max_accel_mps2", trajectory.stats.max_accel)
-        .Add("speed_limit_mps", setup.planning.trajectory.max_speed)
-        .Add("accel_limit_mps2", setup.planning.trajectory.max_accel);
+        .Add("speed_limit_mps", SpeedLimit(setup))
+        .Add("accel_limit_mps2", TrajectoryParamsFor(setup).max_accel)
+        .Add("trajectory_objective", ToString(setup.planning.trajectory.objective));
+    if (setup.planning.trajectory.objective == TimeObjective::kMinTime) {
+      // the limit the trajectory meets most closely (1: exactly at it)
+      summary.Add("trajectory_binding_limit", trajectory.stats.binding_limit.limit)
+          .Add("trajectory_binding_ratio", trajectory.stats.binding_limit.ratio)
+          .Add("trajectory_binding_time_s", trajectory.stats.binding_limit.t);
+    }
   }
   if (result.flown) {
     const FlightResult& flight = result.flight;

@@ -27,6 +27,6 @@ JsonObject RunSummary(const FlightSetup& setup, const MissionResult& result,
 
 // [m] from the setpoint at worst: beyond it a flight is reported as not following its trajectory
 // (the scenario tests' bound is 0.15 m)
-inline constexpr double kLargeTrackingError = 0.5;
+inline constexpr double kLargeTrackingError = 0.25;
 
 }  // namespace aerobox

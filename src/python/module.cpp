@@ -345,6 +345,7 @@ class BuiltinController {
     py::array_t<double> cmd_q(4);
     for (int i = 0; i < 4; ++i) cmd_q.mutable_at(i) = q[i];
     dict["cmd_q"] = cmd_q;
+    dict["cmd_w_ff"] = PointsArray({command.rate_B}).attr("reshape")(3);
     dict["cmd_w"] = PointsArray({out.rate_setpoint_B}).attr("reshape")(3);
     dict["cmd_moment"] = PointsArray({out.moment_B}).attr("reshape")(3);
     py::array_t<double> thrusts(4), speeds(4);

@@ -259,6 +259,8 @@ ControlCommand CommandFromDict(py::handle value, CommandChoice choice, const Qua
       if (q.norm() < 1e-9)
         throw py::value_error(where + ": 'cmd_q' is zero, expected [i, j, k, w]");
       command.q_WB = Quat(q[3], q[0], q[1], q[2]).normalized();
+      // aerobox's own key: body rates [rad/s] added to the attitude loop's (a feed-forward)
+      if (dict.contains("cmd_w_ff")) command.rate_B = Require<3>(dict, "cmd_w_ff", where);
       break;
     }
     case CommandChoice::kAuto:

@@ -118,6 +118,20 @@ void ReadTrajectory(const toml::table& table, const std::string& file, PlanningS
       params.max_speed = Number(node, file, field, 0.01, 8.0);  // a Tello's top speed
     } else if (name == "max_accel") {
       params.max_accel = Number(node, file, field, 0.01, 10.0);
+    } else if (name == "objective") {
+      const std::optional<std::string> text = node.value<std::string>();
+      if (!text || (*text != "min-time" && *text != "snap")) {
+        throw InputError({file, LineOf(node)}, field, "expected \"min-time\" or \"snap\"");
+      }
+      params.objective = *text == "snap" ? TimeObjective::kSnap : TimeObjective::kMinTime;
+    } else if (name == "thrust_margin") {
+      params.thrust_margin = Number(node, file, field, 0.0, 0.9);
+    } else if (name == "max_tilt") {
+      params.max_tilt = Number(node, file, field, 0.05, 1.2);
+    } else if (name == "max_rate") {
+      params.max_rate = Number(node, file, field, 0.1, 50.0);
+    } else if (name == "max_vertical_speed") {
+      params.max_vertical_speed = Number(node, file, field, 0.01, 8.0);
     } else if (name == "clearance") {
       settings->trajectory_clearance = Number(node, file, field, 0.0, 10.0);
     } else if (name == "corridors") {
@@ -153,9 +167,9 @@ void ReadTrajectory(const toml::table& table, const std::string& file, PlanningS
     } else {
       throw InputError(
           {file, LineOf(node)}, field,
-          "unknown key (expected max_speed, max_accel, clearance, corridors, "
-          "corridor_growth, samples_per_segment, max_refinements, closed_form_fallback, "
-          "method or file)");
+          "unknown key (expected objective, max_speed, max_accel, thrust_margin, max_tilt, "
+          "max_rate, max_vertical_speed, clearance, corridors, corridor_growth, "
+          "samples_per_segment, max_refinements, closed_form_fallback, method or file)");
     }
   }
 }

@@ -27,6 +27,49 @@ std::vector<double> TrapezoidDurations(const std::vector<Vec3>& waypoints, doubl
 
 namespace {
 
+// Time [s] to cover the first `s` metres of a rest-to-rest trapezoid of `length` [m].
+double TrapezoidTimeAt(double s, double length, double max_speed, double max_accel) {
+  s = std::clamp(s, 0.0, length);
+  // the peak speed: the limit, or what a triangle reaches at the middle
+  const double peak = std::min(max_speed, std::sqrt(max_accel * length));
+  const double ramp = 0.5 * peak * peak / max_accel;  // [m] to speed up (and to slow down)
+  const double t_ramp = peak / max_accel;
+  if (s <= ramp) return std::sqrt(2.0 * s / max_accel);
+  const double cruise_end = length - ramp;
+  if (s <= cruise_end) return t_ramp + (s - ramp) / peak;
+  const double total = 2.0 * t_ramp + (cruise_end - ramp) / peak;
+  return total - std::sqrt(2.0 * (length - s) / max_accel);
+}
+
+}  // namespace
+
+std::vector<double> TrapezoidDurationsAlongLegs(const std::vector<Vec3>& waypoints,
+                                                double max_speed, double max_accel) {
+  std::vector<double> durations;
+  size_t first = 0;  // the leg's first segment
+  while (first + 1 < waypoints.size()) {
+    // the leg: consecutive segments along one straight line
+    const Vec3 direction = (waypoints[first + 1] - waypoints[first]).normalized();
+    size_t last = first + 1;  // the leg's end waypoint
+    while (last + 1 < waypoints.size() &&
+           (waypoints[last + 1] - waypoints[last]).normalized().dot(direction) > 1.0 - 1e-9) {
+      ++last;
+    }
+    const double length = (waypoints[last] - waypoints[first]).norm();
+    double s = 0.0;
+    for (size_t i = first; i < last; ++i) {
+      const double next = s + (waypoints[i + 1] - waypoints[i]).norm();
+      durations.push_back(std::max(1e-3, TrapezoidTimeAt(next, length, max_speed, max_accel) -
+                                             TrapezoidTimeAt(s, length, max_speed, max_accel)));
+      s = next;
+    }
+    first = last;
+  }
+  return durations;
+}
+
+namespace {
+
 // The snap cost of a segment with the same position, velocity, acceleration and jerk at its two
 // ends as `segment`, lasting `duration` [s].
 double SnapCostWithEnds(const PolynomialSegment& segment, double duration) {

@@ -16,6 +16,11 @@ double TrapezoidTime(double length, double max_speed, double max_accel);
 std::vector<double> TrapezoidDurations(const std::vector<Vec3>& waypoints, double max_speed,
                                        double max_accel);
 
+// The same for a polyline whose straight legs are cut into pieces (collinear waypoints): each
+// leg is one rest-to-rest trapezoid, and each piece gets the time that profile spends on it, so
+// the pieces in the middle of a long leg cruise.
+std::vector<double> TrapezoidDurationsAlongLegs(const std::vector<Vec3>& waypoints,
+                                                double max_speed, double max_accel);
 // The gradient of the closed-form minimum-snap cost with respect to the segment durations
 // [cost / s], at the optimum `trajectory` (SolveMinSnapClosedForm's). The optimum's free
 // derivatives at the waypoints stay optimal to first order (envelope theorem; the snap

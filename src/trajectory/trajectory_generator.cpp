@@ -1,14 +1,20 @@
 #include "trajectory/trajectory_generator.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "common/number_format.h"
 #include "trajectory/time_allocation.h"
 
 namespace aerobox {
 namespace {
+
+// Rounds of stretching the segments a corridor-constrained solve left over the limits.
+constexpr int kMaxRepairs = 3;
 
 // How often a segment whose bounding box is not free is halved before it goes without a corridor.
 constexpr int kMaxSplits = 4;
@@ -65,15 +71,135 @@ std::vector<Vec3> SplitForCorridors(const std::vector<Vec3>& waypoints, const Bo
   return out;
 }
 
+// Cuts straight segments longer than `piece` [m] into equal pieces: a minimum-snap segment
+// peaks in its middle, a chain of short ones can hold a cruise.
+std::vector<Vec3> CutLongSegments(const std::vector<Vec3>& waypoints, double piece) {
+  std::vector<Vec3> out = {waypoints.front()};
+  for (size_t i = 1; i < waypoints.size(); ++i) {
+    const Vec3& a = waypoints[i - 1];
+    const Vec3& b = waypoints[i];
+    const int pieces = std::max(1, static_cast<int>(std::ceil((b - a).norm() / piece - 1e-9)));
+    for (int k = 1; k < pieces; ++k) out.push_back(a + (b - a) * (static_cast<double>(k) / pieces));
+    out.push_back(b);
+  }
+  return out;
+}
+
+// The utilisation each segment's time is scaled towards: a little under the limits, so that the
+// final check (on the corridor-constrained solve) rarely has to stretch anything.
+constexpr double kMinTimeTarget = 0.95;
+constexpr double kTimeRange = 4.0;
+
+// Each segment's time times the square root of the factor that would put its worst point at
+// the target (half the way, in the logarithm: neighbouring segments share their waypoints'
+// derivatives, so a full step overshoots). Returns the largest relative change.
+double ScaleSegmentTimes(const std::vector<FeasibilityCheck>& checks,
+                         std::vector<double>* durations) {
+  double change = 0.0;
+  for (size_t i = 0; i < durations->size() && i < checks.size(); ++i) {
+    const double need = checks[i].scale / kMinTimeTarget;
+    if (!(need > 0) || !std::isfinite(need)) continue;
+    const double factor = std::clamp(std::sqrt(need), 0.5, 2.0);
+    (*durations)[i] *= factor;
+    change = std::max(change, std::abs(factor - 1.0));
+  }
+  return change;
+}
+
+// The worst segment's scale: > 1 when the trajectory asks too much somewhere.
+double WorstScale(const std::vector<FeasibilityCheck>& checks) {
+  double worst = 0.0;
+  for (const FeasibilityCheck& check : checks) worst = std::max(worst, check.scale);
+  return worst;
+}
+
+// Minimum-time segment times on the unconstrained (closed-form) minimum-snap trajectory: from
+// `initial`, each segment's time is rescaled by its own worst point (CheckSegments), for
+// params.time_iterations rounds or until none changes by more than 1 %. Returns the times of
+// the round that was fastest once stretched uniformly to be feasible, and that duration.
+std::pair<std::vector<double>, double> MinTimeFrom(const std::vector<Vec3>& waypoints,
+                                                   std::vector<double> durations,
+                                                   const FlatnessLimits& limits,
+                                                   const TrajectoryParams& params) {
+  // each segment stays within a factor kTimeRange of its start: a segment that cannot be made
+  // feasible on its own (its neighbours decide) must not run away
+  const std::vector<double> initial = durations;
+  std::vector<double> best = durations;
+  double best_total = std::numeric_limits<double>::infinity();
+  MinSnapProblem problem;
+  problem.waypoints = waypoints;
+  for (int k = 0; k < params.time_iterations; ++k) {
+    problem.durations = durations;
+    const PiecewiseTrajectory trajectory = SolveMinSnapClosedForm(problem);
+    const std::vector<FeasibilityCheck> checks =
+        CheckSegments(trajectory, limits, params.check_step);
+    // uniform stretching by s scales every limit's ratio to its own order by 1/s, so the
+    // feasible version of this round lasts duration * max(1, worst scale)
+    const double stretch = std::max(1.0, WorstScale(checks));
+    if (trajectory.duration() * stretch < best_total) {
+      best_total = trajectory.duration() * stretch;
+      best = durations;
+      for (double& t : best) t *= stretch;
+    }
+    const double change = ScaleSegmentTimes(checks, &durations);
+    for (size_t i = 0; i < durations.size(); ++i) {
+      durations[i] = std::clamp(durations[i], initial[i] / kTimeRange, initial[i] * kTimeRange);
+    }
+    if (change < 0.01) break;
+  }
+  return {best, best_total};
+}
+
+// MinTimeFrom two starts, the faster kept: trapezoids that stop at every waypoint (they suit
+// paths that turn at every waypoint), and trapezoids along each straight leg (long legs cut into
+// pieces cruise through them).
+std::vector<double> MinTimeDurations(const std::vector<Vec3>& waypoints,
+                                     const FlatnessLimits& limits, const TrajectoryParams& params) {
+  const double accel = std::min(kGravity * std::tan(limits.max_tilt), limits.max_accel);
+  const auto stops = MinTimeFrom(waypoints, TrapezoidDurations(waypoints, limits.max_speed, accel),
+                                 limits, params);
+  const auto legs = MinTimeFrom(
+      waypoints, TrapezoidDurationsAlongLegs(waypoints, limits.max_speed, accel), limits, params);
+  return stops.second <= legs.second ? stops.first : legs.first;
+}
+
 }  // namespace
+
+const char* ToString(TimeObjective objective) {
+  return objective == TimeObjective::kMinTime ? "min-time" : "snap";
+}
+
+FlatnessLimits EffectiveLimits(const TrajectoryParams& params) {
+  FlatnessLimits limits = params.vehicle;
+  const double hover = limits.mass * kGravity / 4.0;
+  limits.max_rotor_thrust -= params.thrust_margin * (limits.max_rotor_thrust - hover);
+  limits.min_rotor_thrust += params.thrust_margin * (hover - limits.min_rotor_thrust);
+  limits.max_tilt = params.max_tilt;
+  limits.max_rate = params.max_rate;
+  limits.max_speed = std::min(params.vehicle.max_speed, params.max_speed);
+  limits.max_vertical_speed = std::min(params.vehicle.max_speed, params.max_vertical_speed);
+  limits.max_accel = params.max_accel;
+  return limits;
+}
 
 void TrajectoryParams::Validate() const {
   const auto fail = [](const char* field, double value) {
     throw std::invalid_argument(std::string("TrajectoryParams.") + field +
                                 " out of range: " + FormatNumber(value));
   };
-  if (!(max_speed > 0 && std::isfinite(max_speed))) fail("max_speed", max_speed);
-  if (!(max_accel > 0 && std::isfinite(max_accel))) fail("max_accel", max_accel);
+  // a cap may be infinite (none) when the vehicle's limits decide
+  const bool min_time = objective == TimeObjective::kMinTime;
+  if (!(max_speed > 0 && (min_time || std::isfinite(max_speed)))) fail("max_speed", max_speed);
+  if (!(max_accel > 0 && (min_time || std::isfinite(max_accel)))) fail("max_accel", max_accel);
+  if (min_time) {
+    if (!(thrust_margin >= 0 && thrust_margin < 1)) fail("thrust_margin", thrust_margin);
+    if (!(max_tilt > 0 && max_tilt < 1.5)) fail("max_tilt", max_tilt);
+    if (!(max_rate > 0 && std::isfinite(max_rate))) fail("max_rate", max_rate);
+    if (!(max_vertical_speed > 0 && std::isfinite(max_vertical_speed)))
+      fail("max_vertical_speed", max_vertical_speed);
+    if (time_iterations < 1) fail("time_iterations", time_iterations);
+    if (!(cruise_piece > 0 && std::isfinite(cruise_piece))) fail("cruise_piece", cruise_piece);
+  }
   if (!(corridor_growth >= 0 && std::isfinite(corridor_growth)))
     fail("corridor_growth", corridor_growth);
   if (!(corridor_margin >= 0 && std::isfinite(corridor_margin)))
@@ -131,17 +257,30 @@ TrajectoryResult GenerateTrajectory(const std::vector<Vec3>& path, const Traject
   if (result.waypoints.size() < 2)
     throw std::invalid_argument("GenerateTrajectory: path too short");
 
+  const bool min_time = params.objective == TimeObjective::kMinTime;
+  if (min_time && !params.vehicle.valid()) {
+    throw std::invalid_argument("GenerateTrajectory: objective min-time needs the vehicle");
+  }
+  const FlatnessLimits limits = min_time ? EffectiveLimits(params) : FlatnessLimits();
   // a singular system (degenerate waypoints or times) is an outcome like an infeasible one
   try {
     for (int round = 0;; ++round) {
       std::vector<Vec3>& waypoints = result.waypoints;
+      if (min_time && round == 0) waypoints = CutLongSegments(waypoints, params.cruise_piece);
       if (params.use_corridors) waypoints = SplitForCorridors(waypoints, world.box_free);
 
       MinSnapProblem problem;
       problem.waypoints = waypoints;
-      problem.durations = RefineDurations(
-          waypoints, TrapezoidDurations(waypoints, params.max_speed, params.max_accel),
-          params.time_refinement_steps);
+      const auto dbg1 = std::chrono::steady_clock::now();
+      problem.durations =
+          min_time
+              ? MinTimeDurations(waypoints, limits, params)
+              : RefineDurations(waypoints,
+                                TrapezoidDurations(waypoints, params.max_speed, params.max_accel),
+                                params.time_refinement_steps);
+      if (getenv("DBG"))
+        fprintf(stderr, "alloc %.3f s\n",
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - dbg1).count());
       problem.samples_per_segment = params.samples_per_segment;
       result.corridors.assign(problem.durations.size(), std::nullopt);
       if (params.use_corridors) {
@@ -154,20 +293,64 @@ TrajectoryResult GenerateTrajectory(const std::vector<Vec3>& path, const Traject
                                                   waypoints[i + 1], params.corridor_margin);
           }
         }
-        const MinSnapSolution solution = SolveMinSnapIpopt(problem, params.ipopt);
-        result.stats.solver_message = solution.message;
-        if (solution.status != SolveStatus::kSolved) {
-          result.status = solution.status == SolveStatus::kInfeasible
-                              ? TrajectoryStatus::kInfeasible
-                              : TrajectoryStatus::kFailed;
-          break;
-        }
-        result.trajectory = solution.trajectory;
-      } else {
-        result.trajectory = SolveMinSnapClosedForm(problem);
-        result.stats.solver_message = "closed form";
       }
-      ScaleToLimits(params.max_speed, params.max_accel, params.check_step, &result.trajectory);
+      // min-time: the corridors bend the solve away from the closed form's; a segment that now
+      // asks too much gets its own time stretched and the problem is solved again, and the
+      // fastest solve (once stretched to be feasible) is kept
+      bool solved = true;
+      double best_total = std::numeric_limits<double>::infinity();
+      PiecewiseTrajectory best;
+      for (int repair = 0;; ++repair) {
+        if (params.use_corridors) {
+          const auto dbg0 = std::chrono::steady_clock::now();
+          const MinSnapSolution solution = SolveMinSnapIpopt(problem, params.ipopt);
+          if (getenv("DBG"))
+            fprintf(stderr, "ipopt %.3f s %s\n",
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - dbg0).count(),
+                    solution.message.c_str());
+          result.stats.solver_message = solution.message;
+          if (solution.status != SolveStatus::kSolved) {
+            result.status = solution.status == SolveStatus::kInfeasible
+                                ? TrajectoryStatus::kInfeasible
+                                : TrajectoryStatus::kFailed;
+            solved = best_total < std::numeric_limits<double>::infinity();
+            break;
+          }
+          result.trajectory = solution.trajectory;
+        } else {
+          result.trajectory = SolveMinSnapClosedForm(problem);
+          result.stats.solver_message = "closed form";
+        }
+        if (!min_time) break;
+        std::vector<FeasibilityCheck> checks =
+            CheckSegments(result.trajectory, limits, params.check_step);
+        const double stretch = std::max(1.0, WorstScale(checks));
+        if (result.trajectory.duration() * stretch < best_total) {
+          best_total = result.trajectory.duration() * stretch;
+          best = result.trajectory;
+          best.ScaleTime(stretch);
+        }
+        if (stretch <= 1.0 || repair >= kMaxRepairs) break;
+        for (FeasibilityCheck& check : checks) {
+          check.scale = std::max(check.scale, kMinTimeTarget);  // stretch only
+        }
+        ScaleSegmentTimes(checks, &problem.durations);
+      }
+      if (min_time && solved) result.trajectory = best;
+      if (!solved) break;
+      if (min_time) {
+        // the last word: the whole trajectory within the limits (a uniform stretch when a
+        // repair left a point over; time scaling is monotone in every limit)
+        for (int k = 0; k < 3; ++k) {
+          const FeasibilityCheck worst =
+              CheckFeasibility(result.trajectory, limits, params.check_step);
+          if (worst.scale <= 1.0) break;
+          result.trajectory.ScaleTime(worst.scale * 1.001);
+        }
+        result.stats.binding_limit = CheckFeasibility(result.trajectory, limits, params.check_step);
+      } else {
+        ScaleToLimits(params.max_speed, params.max_accel, params.check_step, &result.trajectory);
+      }
 
       // collision-aware refinement: the segment that leaves free space gets its midpoint
       const std::optional<double> hit =

@@ -10,13 +10,38 @@
 #include <vector>
 
 #include "trajectory/corridor.h"
+#include "trajectory/feasibility.h"
 #include "trajectory/min_snap.h"
 
 namespace aerobox {
 
+// How the segment times are chosen.
+enum class TimeObjective {
+  // trapezoidal times redistributed to lower the snap, then one uniform scale that puts the
+  // trajectory at max_speed or max_accel
+  kSnap,
+  // as fast as the vehicle flies (MinTimeDurations): each segment's time is scaled until its
+  // worst point meets the vehicle's limits (FlatnessLimits: rotor thrusts, tilt, rates, speed)
+  kMinTime,
+};
+const char* ToString(TimeObjective objective);
+
 struct TrajectoryParams {
-  double max_speed = 2.0;        // [m/s] (a Tello does 8; tracking is tighter when slower)
-  double max_accel = 2.0;        // [m/s^2]
+  TimeObjective objective = TimeObjective::kSnap;
+  // kSnap: the limits the trajectory is scaled to; kMinTime: extra caps (infinity: none)
+  double max_speed = 2.0;  // [m/s] (a Tello does 8; tracking is tighter when slower)
+  double max_accel = 2.0;  // [m/s^2]
+  // kMinTime: the vehicle (mass, inertia, allocation, rotor range, top speed) and the margins
+  // the trajectory leaves to the controller
+  FlatnessLimits vehicle;
+  double thrust_margin = 0.25;      // of each rotor's swing from hover to its limits
+  double max_tilt = 0.5;            // [rad]
+  double max_rate = 6.0;            // [rad/s] body rate
+  double max_vertical_speed = 3.0;  // [m/s]
+  int time_iterations = 30;         // rounds of per-segment time scaling
+  // kMinTime: straight segments longer than this are cut in pieces, so that the vehicle can
+  // cruise along them at its top speed [m]
+  double cruise_piece = 4.0;
   bool use_corridors = true;     // false: equality constraints only (closed form, no Ipopt)
   double corridor_growth = 1.0;  // how far a corridor may reach past its segment's box [m]
   // kept between the constrained samples and the corridor's faces [m]: more than the
@@ -59,6 +84,8 @@ struct TrajectoryStats {
   double max_accel = 0.0;      // [m/s^2], sampled
   double snap_cost = 0.0;      // [m^2/s^7]
   std::string solver_message;  // Ipopt's last return status
+  // min-time: the limit the trajectory meets most closely, where and how closely
+  FeasibilityCheck binding_limit;
 };
 
 struct TrajectoryResult {
@@ -73,6 +100,9 @@ struct TrajectoryResult {
 // trajectory starts and ends at rest.
 TrajectoryResult GenerateTrajectory(const std::vector<Vec3>& path, const TrajectoryWorld& world,
                                     const TrajectoryParams& params);
+
+// The limits a kMinTime trajectory is held to: `params.vehicle` with the margins and caps.
+FlatnessLimits EffectiveLimits(const TrajectoryParams& params);
 
 // Fills result->stats' duration, sampled top speed and acceleration (every check_step) and snap
 // cost from result->trajectory (left as they are when it is empty).

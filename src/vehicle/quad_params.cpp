@@ -38,8 +38,11 @@ QuadParams Crazyflie() {
   // brushed motors are slow, so the later value is the one taken.
   p.motor_time_constant = 0.072;
   p.collision_size = Vec3(0.10, 0.10, 0.03);  // 92 x 92 x 29 mm over the propellers
-  p.propeller_radius = 0.0225;                // 45 mm propellers
-  p.guard_radius = 0.024;                     // (no guards: the propeller disc's outline)
+  // no published top speed; its thrust-to-weight of about 2 and flights in the Crazyswarm
+  // papers put a safe cruise below 4 m/s (an estimate)
+  p.max_speed = 4.0;
+  p.propeller_radius = 0.0225;  // 45 mm propellers
+  p.guard_radius = 0.024;       // (no guards: the propeller disc's outline)
   return p;
 }
 

@@ -57,6 +57,9 @@ struct QuadParams {
   // MuJoCo 2.2's filter actuator has one time constant, so 20 ms sits between the two.
   double motor_time_constant = 0.020;
 
+  // Top speed [m/s]: DJI's specification for the Tello, 8 m/s. Trajectories stay below it.
+  double max_speed = 8.0;
+
   // Collision body: a box of these full sides [m], centred at the body origin. The Tello's
   // 98 x 92.5 x 41 mm rounded up to cover the guards.
   Vec3 collision_size = Vec3(0.10, 0.10, 0.05);

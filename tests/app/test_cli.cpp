@@ -331,9 +331,13 @@ TEST_CASE("fly: plans, flies and writes path, trajectory, telemetry and summary"
   CHECK(summary["start"][2].get<double>() == doctest::Approx(0.125));
   CHECK(summary["goal_requested"] == summary["goal"]);
   CHECK(summary["map"] == room);
-  CHECK(summary["speed_limit_mps"] == 2.0);
+  // min-time: below the Tello's top speed, no acceleration cap
+  CHECK(summary["speed_limit_mps"] == 8.0);
+  CHECK(summary["accel_limit_mps2"].is_null());
+  CHECK(summary["trajectory_objective"] == "min-time");
   // how fast and how hard it flew: the speed stays near the trajectory's (it tracks within
-  // centimetres), a hover takes about half of a Tello's thrust, nothing saturates at 2 m/s
+  // centimetres), a hover takes about half of a Tello's thrust, nothing saturates: the
+  // trajectory leaves the rotors a margin
   const double top = testing::SummaryNumber(summary, "top_speed_mps");
   CHECK(top ==
         doctest::Approx(testing::SummaryNumber(summary, "trajectory_max_speed_mps")).epsilon(0.05));
@@ -414,9 +418,9 @@ namespace aerobox {
 TEST_CASE("limits the vehicle cannot follow are said before the flight and in the verdict") {
   const std::string maze = (testing::SourceDir() / "scenes/maze/scenario.toml").string();
   const testing::TempDir dir;
-  const testing::CliRun run =
-      testing::RunAerobox({"fly", maze, "--no-video", "--quiet", "--out",
-                           (dir.path() / "out").string(), "--max-speed", "8", "--max-accel", "10"});
+  const testing::CliRun run = testing::RunAerobox(
+      {"fly", maze, "--no-video", "--quiet", "--out", (dir.path() / "out").string(), "--objective",
+       "snap", "--max-speed", "8", "--max-accel", "10"});
   CAPTURE(run.out);
   // a Tello tilts at most 0.6 rad: g tan(0.6) = 6.7 m/s^2 horizontally
   CHECK(run.err.find("aerobox: warning: the trajectory may accelerate at 10 m/s^2, but this "
@@ -425,6 +429,19 @@ TEST_CASE("limits the vehicle cannot follow are said before the flight and in th
   CHECK(summary["tracking_warning"].get<std::string>().find("off its trajectory") !=
         std::string::npos);
   CHECK(run.out.find("  warning     the vehicle was up to") != std::string::npos);
+
+  // min-time (the default) flies within the vehicle's own limits: a cap above them says nothing,
+  // and the flight follows its trajectory
+  const testing::CliRun fast =
+      testing::RunAerobox({"fly", maze, "--no-video", "--quiet", "--out",
+                           (dir.path() / "fast").string(), "--max-accel", "10"});
+  CAPTURE(fast.out);
+  CHECK(fast.code == 0);
+  CHECK(fast.err.find("warning") == std::string::npos);
+  const nlohmann::json fast_summary = testing::ReadSummary(dir.path() / "fast" / "summary.json");
+  CHECK(fast_summary["tracking_warning"].get<std::string>().empty());
+  CHECK(fast_summary["trajectory_objective"] == "min-time");
+  CHECK(fast_summary["trajectory_binding_ratio"].get<double>() <= 1.0);
 }
 
 }  // namespace aerobox

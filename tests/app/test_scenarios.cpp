@@ -133,19 +133,20 @@ TEST_CASE("scenario RBE595 map3: the official start has no room for the vehicle'
   CheckSuccess((maps / "rbe595/map3.txt").string(), {"--start", "0,3,4.5"});
 }
 
-TEST_CASE("scenario the FCND city: a 674 m flight at up to 8 m/s") {
+TEST_CASE("scenario the FCND city: a 674 m flight at more than 6 m/s on average") {
   AEROBOX_REQUIRE_SHARED_MAPS(maps);
   // across the city from its south-west corner, 20 m up, to a street 50 m up: the lattice
-  // plans it, the scene keeps the buildings near the route
+  // plans it, the scene keeps the buildings near the route, the minimum-time trajectory
+  // cruises along the long legs below the Tello's 8 m/s
   const testing::TempDir dir;
   const std::filesystem::path scenario = dir.path() / "city.toml";
   std::ofstream(scenario) << "name = \"city\"\nmap = \"" << (maps / "fcnd/colliders.csv").string()
-                          << "\"\nstart = [-300, -300, 20]\ngoal = [150, 200, 50]\n"
-                          << "[trajectory]\nmax_speed = 8\nmax_accel = 4\n";
+                          << "\"\nstart = [-300, -300, 20]\ngoal = [150, 200, 50]\n";
   const Flight flight = CheckSuccess(scenario.string());
   CHECK(testing::SummaryNumber(flight.summary, "path_length_m") > 600);
-  CHECK(testing::SummaryNumber(flight.summary, "trajectory_max_speed_mps") > 7.9);
-  CHECK(testing::SummaryNumber(flight.summary, "flight_time_s") > 100);
+  CHECK(testing::SummaryNumber(flight.summary, "average_speed_mps") > 6.0);
+  CHECK(testing::SummaryNumber(flight.summary, "trajectory_max_speed_mps") <= 8.0);
+  CHECK(testing::SummaryNumber(flight.summary, "trajectory_binding_ratio") <= 1.0);
 }
 
 }  // namespace aerobox

@@ -78,8 +78,14 @@ class SE3Control:
         R_des = np.column_stack([cross(b2, b3), b2, b3])
         S = 0.5 * (R_des.T @ R - R.T @ R_des)
         e_R = np.array([S[2, 1], S[0, 2], S[1, 0]])
+        # the desired body rates from the jerk (the thrust axis turns with the jerk across it)
+        jerk = flat_output["x_dddot"]
+        h = self.mass / float(force @ b3) * (jerk - (b3 @ jerk) * b3)
+        b1 = R_des[:, 0]
+        w_des = np.array([-(h @ b2), h @ b1, flat_output["yaw_dot"] * b3[2]])
         w = state["w"]
-        moment = self.inertia @ (-self.kr * e_R - self.kw * w) + cross(w, self.inertia @ w)
+        e_w = w - R.T @ (R_des @ w_des)
+        moment = self.inertia @ (-self.kr * e_R - self.kw * e_w) + cross(w, self.inertia @ w)
         thrusts = self.to_rotors @ np.concatenate([[thrust], moment])
         thrusts = np.minimum(np.maximum(thrusts, self.min_thrust), self.max_thrust)
         return {
@@ -88,5 +94,5 @@ class SE3Control:
             "cmd_thrust": thrust,
             "cmd_moment": moment,
             "cmd_q": quaternion(R_des),
-            "cmd_w": np.zeros(3),
+            "cmd_w": w_des,
         }

@@ -311,7 +311,9 @@ class Simulator:
         controller: any object with update(t, state, flat_output) -> dict, or a built-in by
             name ("cascade", "se3"). The dict holds cmd_motor_thrusts [N] (4), or
             cmd_motor_speeds [rad/s] (through k_eta), or cmd_thrust [N] with cmd_moment [N m]
-            (body), cmd_w [rad/s] (body) or cmd_q ([i, j, k, w]); extra keys are ignored.
+            (body), cmd_w [rad/s] (body) or cmd_q ([i, j, k, w]; with it, aerobox's own
+            cmd_w_ff [rad/s] adds body rates to the attitude loop's, a feed-forward); extra
+            keys are ignored.
         command: which keys fly: "auto" (the first present of cmd_motor_thrusts,
             cmd_motor_speeds, cmd_moment, cmd_w, cmd_q), or RotorPy's control abstraction
             "cmd_motor_thrusts", "cmd_motor_speeds", "cmd_ctbm", "cmd_ctbr", "cmd_ctatt".
@@ -361,7 +363,8 @@ def write_outputs(result, out_dir, video=True, size=(640, 480), fps=30, camera="
 def builtin_controller(sim, kind="cascade", rate=500):
     """A built-in controller ("cascade", "se3") as a Python object for `sim`'s vehicle:
     update(t, state, flat_output) -> dict with every command level at once: its own command
-    (cmd_thrust [N], cmd_q [i, j, k, w]) and what aerobox's inner loops make of it below it,
+    (cmd_thrust [N], cmd_q [i, j, k, w], cmd_w_ff [rad/s]) and what aerobox's inner loops make
+    of it below it,
     called at `rate` [Hz]: cmd_w [rad/s], cmd_moment [N m], cmd_motor_thrusts [N],
     cmd_motor_speeds [rad/s]. For comparing, or wrapping, in Python."""
     return _aerobox.BuiltinController(sim._core.setup, kind, float(rate))
