@@ -187,10 +187,10 @@ void TrajectoryParams::Validate() const {
     throw std::invalid_argument(std::string("TrajectoryParams.") + field +
                                 " out of range: " + FormatNumber(value));
   };
-  // a cap may be infinite (none) when the vehicle's limits decide
+  // a cap may be infinite (none): min-time does without; snap needs both (GenerateTrajectory)
   const bool min_time = objective == TimeObjective::kMinTime;
-  if (!(max_speed > 0 && (min_time || std::isfinite(max_speed)))) fail("max_speed", max_speed);
-  if (!(max_accel > 0 && (min_time || std::isfinite(max_accel)))) fail("max_accel", max_accel);
+  if (!(max_speed > 0)) fail("max_speed", max_speed);
+  if (!(max_accel > 0)) fail("max_accel", max_accel);
   if (min_time) {
     if (!(thrust_margin >= 0 && thrust_margin < 1)) fail("thrust_margin", thrust_margin);
     if (!(max_tilt > 0 && max_tilt < 1.5)) fail("max_tilt", max_tilt);
@@ -260,6 +260,9 @@ TrajectoryResult GenerateTrajectory(const std::vector<Vec3>& path, const Traject
   const bool min_time = params.objective == TimeObjective::kMinTime;
   if (min_time && !params.vehicle.valid()) {
     throw std::invalid_argument("GenerateTrajectory: objective min-time needs the vehicle");
+  }
+  if (!min_time && !(std::isfinite(params.max_speed) && std::isfinite(params.max_accel))) {
+    throw std::invalid_argument("GenerateTrajectory: objective snap needs max_speed and max_accel");
   }
   const FlatnessLimits limits = min_time ? EffectiveLimits(params) : FlatnessLimits();
   // a singular system (degenerate waypoints or times) is an outcome like an infeasible one

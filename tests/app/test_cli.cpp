@@ -442,6 +442,17 @@ TEST_CASE("limits the vehicle cannot follow are said before the flight and in th
   CHECK(fast_summary["tracking_warning"].get<std::string>().empty());
   CHECK(fast_summary["trajectory_objective"] == "min-time");
   CHECK(fast_summary["trajectory_binding_ratio"].get<double>() <= 1.0);
+
+  // --objective snap alone: the snap objective's own 2 m/s and 2 m/s^2
+  const testing::CliRun snap =
+      testing::RunAerobox({"fly", maze, "--no-video", "--quiet", "--out",
+                           (dir.path() / "snap").string(), "--objective", "snap"});
+  CHECK(snap.code == 0);
+  const nlohmann::json snap_summary = testing::ReadSummary(dir.path() / "snap" / "summary.json");
+  CHECK(snap_summary["speed_limit_mps"] == 2.0);
+  CHECK(snap_summary["accel_limit_mps2"] == 2.0);
+  CHECK(snap_summary["trajectory_max_speed_mps"].get<double>() <= 2.0 * 1.005);
+  CHECK(Aerobox({"fly", maze, "--objective", "fastest"}).code == kExitBadInput);
 }
 
 }  // namespace aerobox
