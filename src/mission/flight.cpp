@@ -74,6 +74,12 @@ int ControlDivider(double rate, double step) {
   return static_cast<int>(rounded);
 }
 
+// Taking off from the floor: the reference starts once the vehicle is this close to its start
+// [m] and this slow [m/s], or after kMaxTakeoff [s] whatever happened.
+constexpr double kTakeoffTolerance = 0.02;
+constexpr double kTakeoffSpeed = 0.3;
+constexpr double kMaxTakeoff = 3.0;
+
 }  // namespace
 
 FlightResult FlyTrajectory(const Reference& reference, const FlightParams& params,
@@ -100,6 +106,9 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
   }
   // on the floor until the first step without floor contact
   bool airborne = sim->VehicleContacts().empty();
+  const Vec3 start = reference.evaluate(0.0, kPosition);
+  bool taking_off = !airborne && (sim->VehicleState().p_W - start).norm() > kTakeoffTolerance;
+  double takeoff_time = 0.0;  // [s] of flight when the reference started
   double squared_error_sum = 0.0;
   long samples = 0;
 
@@ -119,6 +128,18 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
   const double t0 = sim->time();
   for (long k = 0;; ++k) {
     const double t = sim->time() - t0;
+    // a vehicle resting on the floor below the trajectory's start lifts to it first: the
+    // reference waits at its start until the vehicle is there (or kMaxTakeoff has passed)
+    if (taking_off) {
+      const State now = sim->VehicleState();
+      if (((now.p_W - start).norm() < kTakeoffTolerance && now.v_W.norm() < kTakeoffSpeed) ||
+          t >= kMaxTakeoff) {
+        taking_off = false;
+        takeoff_time = t;
+      }
+    }
+    // the reference's own time [s]
+    const double tr = taking_off ? 0.0 : t - takeoff_time;
     const State state = sim->VehicleState();
     if (!state.p_W.allFinite() || !state.v_W.allFinite() || !state.q_WB.coeffs().allFinite() ||
         !state.w_B.allFinite()) {
@@ -131,15 +152,15 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
     const bool control_step = k % divider == 0;
     if (control_step) {
       setpoint = FlatOutput();
-      setpoint.p_W = reference.evaluate(std::min(t, duration), kPosition);
-      if (t < duration) {
-        setpoint.v_W = reference.evaluate(t, kVelocity);
-        setpoint.a_W = reference.evaluate(t, kAcceleration);
-        setpoint.j_W = reference.evaluate(t, kJerk);
-        setpoint.s_W = reference.evaluate(t, kSnap);
+      setpoint.p_W = reference.evaluate(std::min(tr, duration), kPosition);
+      if (tr < duration) {
+        setpoint.v_W = reference.evaluate(tr, kVelocity);
+        setpoint.a_W = reference.evaluate(tr, kAcceleration);
+        setpoint.j_W = reference.evaluate(tr, kJerk);
+        setpoint.s_W = reference.evaluate(tr, kSnap);
         const double speed_xy = setpoint.v_W.head<2>().norm();
         if (reference.heading) {
-          std::tie(yaw, setpoint.yaw_rate) = reference.heading(t);
+          std::tie(yaw, setpoint.yaw_rate) = reference.heading(tr);
         } else if (params.face_travel && speed_xy > 0.2) {
           yaw = std::atan2(setpoint.v_W.y(), setpoint.v_W.x());
           setpoint.yaw_rate =
@@ -180,12 +201,12 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
       result.status = FlightStatus::kFlyAway;
       break;
     }
-    if (t >= duration && (state.p_W - goal).norm() < params.goal_tolerance &&
+    if (!taking_off && tr >= duration && (state.p_W - goal).norm() < params.goal_tolerance &&
         state.v_W.norm() < params.goal_speed) {
       result.status = FlightStatus::kReachedGoal;
       break;
     }
-    if (t >= end_time) {
+    if (t >= end_time + takeoff_time) {
       result.status = FlightStatus::kTimeout;
       break;
     }

@@ -150,6 +150,54 @@ std::pair<std::vector<double>, double> MinTimeFrom(const std::vector<Vec3>& wayp
   return {best, best_total};
 }
 
+// The time the closed-form trajectory on `durations` lasts once stretched uniformly to be
+// feasible [s].
+double FeasibleDuration(MinSnapProblem* problem, const std::vector<double>& durations,
+                        const FlatnessLimits& limits, double dt) {
+  problem->durations = durations;
+  const PiecewiseTrajectory trajectory = SolveMinSnapClosedForm(*problem);
+  return trajectory.duration() * std::max(1.0, CheckFeasibility(trajectory, limits, dt).scale);
+}
+
+// Pattern search on the feasible duration itself: each segment's time shrunk or stretched by
+// `step`, kept when the whole trajectory, made feasible, gets shorter; the step halves when a
+// sweep finds nothing. It finds what the per-segment scaling cannot: a segment slowed so that
+// its neighbours may go faster. At most kSearchEvaluations solves.
+std::vector<double> SearchDurations(const std::vector<Vec3>& waypoints, std::vector<double> best,
+                                    const FlatnessLimits& limits, double dt) {
+  constexpr int kSearchEvaluations = 400;
+  MinSnapProblem problem;
+  problem.waypoints = waypoints;
+  double best_total = FeasibleDuration(&problem, best, limits, dt);
+  int evaluations = 1;
+  for (double step = 0.15; step > 0.01 && evaluations < kSearchEvaluations; step *= 0.5) {
+    bool improved = true;
+    while (improved && evaluations < kSearchEvaluations) {
+      improved = false;
+      for (size_t i = 0; i < best.size() && evaluations < kSearchEvaluations; ++i) {
+        for (const double factor : {1.0 - step, 1.0 / (1.0 - step)}) {
+          std::vector<double> trial = best;
+          trial[i] *= factor;
+          const double total = FeasibleDuration(&problem, trial, limits, dt);
+          ++evaluations;
+          if (total < best_total * (1.0 - 1e-4)) {
+            best_total = total;
+            best = std::move(trial);
+            improved = true;
+            break;
+          }
+        }
+      }
+    }
+  }
+  // feasible as it stands: stretched by what the last check asked
+  problem.durations = best;
+  const double stretch =
+      std::max(1.0, CheckFeasibility(SolveMinSnapClosedForm(problem), limits, dt).scale);
+  for (double& t : best) t *= stretch;
+  return best;
+}
+
 // MinTimeFrom two starts, the faster kept: trapezoids that stop at every waypoint (they suit
 // paths that turn at every waypoint), and trapezoids along each straight leg (long legs cut into
 // pieces cruise through them).
@@ -160,7 +208,12 @@ std::vector<double> MinTimeDurations(const std::vector<Vec3>& waypoints,
                                  limits, params);
   const auto legs = MinTimeFrom(
       waypoints, TrapezoidDurationsAlongLegs(waypoints, limits.max_speed, accel), limits, params);
-  return stops.second <= legs.second ? stops.first : legs.first;
+  const std::vector<double>& best = stops.second <= legs.second ? stops.first : legs.first;
+  // the search costs a solve per trial: for the maps of a room, not for a city's hundreds of
+  // segments
+  constexpr size_t kSearchSegments = 60;
+  if (best.size() > kSearchSegments) return best;
+  return SearchDurations(waypoints, best, limits, params.check_step);
 }
 
 }  // namespace

@@ -37,7 +37,7 @@ struct TrajectoryParams {
   double thrust_margin = 0.25;      // of each rotor's swing from hover to its limits
   double max_tilt = 0.5;            // [rad]
   double max_rate = 6.0;            // [rad/s] body rate
-  double max_vertical_speed = 3.0;  // [m/s]
+  double max_vertical_speed = 2.5;  // [m/s] (below the cascade's 3, for its feedback)
   int time_iterations = 30;         // rounds of per-segment time scaling
   // kMinTime: straight segments longer than this are cut in pieces, so that the vehicle can
   // cruise along them at its top speed [m]
