@@ -1,6 +1,8 @@
 // Process exit codes of the aerobox command (the contract in DESIGN.md).
 #pragma once
 
+#include "outputs/interrupt.h"
+
 namespace aerobox {
 
 enum ExitCode : int {
@@ -9,8 +11,8 @@ enum ExitCode : int {
   kExitBadInput = 2,     // usage, map or scenario errors, unwritable output
   kExitNoPath = 3,
   kExitNoTrajectory = 4,
-  kExitFlightFailed = 5,   // collision, timeout, divergence
-  kExitInterrupted = 130,  // Ctrl-C (the shell's convention: 128 + SIGINT)
+  kExitFlightFailed = 5,                    // collision, timeout, divergence
+  kExitInterrupted = kInterruptedExitCode,  // Ctrl-C (the shell's convention: 128 + SIGINT)
 };
 
 }  // namespace aerobox

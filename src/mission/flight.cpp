@@ -128,24 +128,21 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
   const double t0 = sim->time();
   for (long k = 0;; ++k) {
     const double t = sim->time() - t0;
-    // a vehicle resting on the floor below the trajectory's start lifts to it first: the
-    // reference waits at its start until the vehicle is there (or kMaxTakeoff has passed)
-    if (taking_off) {
-      const State now = sim->VehicleState();
-      if (((now.p_W - start).norm() < kTakeoffTolerance && now.v_W.norm() < kTakeoffSpeed) ||
-          t >= kMaxTakeoff) {
-        taking_off = false;
-        takeoff_time = t;
-      }
-    }
-    // the reference's own time [s]
-    const double tr = taking_off ? 0.0 : t - takeoff_time;
     const State state = sim->VehicleState();
     if (!state.p_W.allFinite() || !state.v_W.allFinite() || !state.q_WB.coeffs().allFinite() ||
         !state.w_B.allFinite()) {
       result.status = FlightStatus::kNonFinite;
       break;
     }
+    // a vehicle resting on the floor below the trajectory's start lifts to it first: the
+    // reference waits at its start until the vehicle is there (or kMaxTakeoff has passed)
+    if (taking_off &&
+        (((state.p_W - start).norm() < kTakeoffTolerance && state.v_W.norm() < kTakeoffSpeed) ||
+         t >= kMaxTakeoff)) {
+      taking_off = false;
+      takeoff_time = t;
+    }
+    const double tr = taking_off ? 0.0 : t - takeoff_time;  // the reference's own time [s]
 
     // the setpoint: the reference's flat outputs when the controller runs, its end held after
     // it; between control steps it is held (the controller sees nothing else)

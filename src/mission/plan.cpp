@@ -102,11 +102,20 @@ std::pair<Endpoint, Endpoint> ResolveEndpoints(const Map& map, const CollisionWo
           Resolve(map, world, touching, goal, "goal", goal_where)};
 }
 
+namespace {
+
+// The tilt limit of the set-up's controller [rad].
+double ControllerTilt(const FlightSetup& setup) {
+  return setup.controller.kind == "se3" ? setup.controller.se3.max_tilt
+                                        : setup.controller.cascade.max_tilt;
+}
+
+}  // namespace
+
 double ReachableAcceleration(const FlightSetup& setup) {
   const QuadParams& v = setup.vehicle;
   const double thrust = kNumRotors * v.MaxRotorThrust() / v.mass;  // [m/s^2] straight up
-  const double tilt = setup.controller.kind == "se3" ? setup.controller.se3.max_tilt
-                                                     : setup.controller.cascade.max_tilt;
+  const double tilt = ControllerTilt(setup);
   const double horizontal = std::min(
       kGravity * std::tan(tilt), std::sqrt(std::max(0.0, thrust * thrust - kGravity * kGravity)));
   return std::min(horizontal, thrust - kGravity);
@@ -117,8 +126,7 @@ std::string LimitsWarning(const FlightSetup& setup) {
   const double asked = TrajectoryParamsFor(setup).max_accel;
   if (setup.planning.trajectory.objective == TimeObjective::kMinTime) {
     // the vehicle's limits decide; a cap above them only does nothing
-    const double tilt = setup.controller.kind == "se3" ? setup.controller.se3.max_tilt
-                                                       : setup.controller.cascade.max_tilt;
+    const double tilt = ControllerTilt(setup);
     if (setup.planning.trajectory.max_tilt < tilt) return "";
     return "the trajectory may tilt " + FormatNumber(setup.planning.trajectory.max_tilt) +
            " rad, the controller only " + FormatNumber(tilt) +

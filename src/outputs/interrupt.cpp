@@ -13,8 +13,6 @@
 namespace aerobox {
 namespace {
 
-// the shell's code for an end by SIGINT (128 + 2), as app/exit_codes.h promises
-constexpr int kInterruptedExitCode = 130;
 constexpr auto kGrace = std::chrono::milliseconds(1000);  // for the cooperative stop
 
 std::atomic<bool> stop_requested{false};

@@ -10,6 +10,9 @@
 
 namespace aerobox {
 
+// What the watchdog ends the process with: the shell's code for an end by SIGINT (128 + 2).
+inline constexpr int kInterruptedExitCode = 130;
+
 // Installs the SIGINT handler and the watchdog thread (once; later calls do nothing).
 void InstallInterruptHandler();
 

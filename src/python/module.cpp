@@ -44,7 +44,7 @@ auto Checked(F&& f) -> decltype(f()) {
 
 py::object OptionalPoint(const std::optional<Vec3>& p) {
   if (!p) return py::none();
-  return PointsArray({*p}).attr("reshape")(3);
+  return Vec3Array(*p);
 }
 
 std::optional<Vec3> OptionalPointFrom(const py::object& value, const std::string& what) {
@@ -102,16 +102,15 @@ class SimulatorCore {
  public:
   explicit SimulatorCore(SetupPtr setup)
       : setup_(std::move(setup)),
-        sim_(Checked([&] { return Simulation::FromXml(SceneMjcfFor(*setup_), setup_->name); })),
+        xml_(SceneMjcfFor(*setup_)),
+        sim_(Load()),
         world_(setup_->map, CollisionParams{setup_->vehicle.collision_size, 0.0}),
-        inner_(setup_->controller.inner, setup_->vehicle) {
-    Reset(1, py::none());
-  }
+        inner_(setup_->controller.inner, setup_->vehicle) {}
 
   void Reset(long long seed, const py::object& state) {
     if (seed < 0) throw py::value_error("seed must be >= 0");
     seed_ = static_cast<std::uint64_t>(seed);
-    sim_ = Checked([&] { return Simulation::FromXml(SceneMjcfFor(*setup_), setup_->name); });
+    sim_ = Load();
     inner_ = InnerLoops(setup_->controller.inner, setup_->vehicle);
     if (!state.is_none()) {
       sim_.SetVehicleState(StateFromDict(state));
@@ -304,7 +303,13 @@ class SimulatorCore {
     return result;
   }
 
+  // a fresh simulation of the scene, at rest at the start
+  Simulation Load() const {
+    return Checked([&] { return Simulation::FromXml(xml_, setup_->name); });
+  }
+
   SetupPtr setup_;
+  std::string xml_;  // the scene, made once
   Simulation sim_;
   CollisionWorld world_;
   InnerLoops inner_;
@@ -345,9 +350,9 @@ class BuiltinController {
     py::array_t<double> cmd_q(4);
     for (int i = 0; i < 4; ++i) cmd_q.mutable_at(i) = q[i];
     dict["cmd_q"] = cmd_q;
-    dict["cmd_w_ff"] = PointsArray({command.rate_B}).attr("reshape")(3);
-    dict["cmd_w"] = PointsArray({out.rate_setpoint_B}).attr("reshape")(3);
-    dict["cmd_moment"] = PointsArray({out.moment_B}).attr("reshape")(3);
+    dict["cmd_w_ff"] = Vec3Array(command.rate_B);
+    dict["cmd_w"] = Vec3Array(out.rate_setpoint_B);
+    dict["cmd_moment"] = Vec3Array(out.moment_B);
     py::array_t<double> thrusts(4), speeds(4);
     for (int i = 0; i < kNumRotors; ++i) {
       thrusts.mutable_at(i) = out.mixer.thrusts[i];

@@ -30,8 +30,6 @@ py::array_t<double> VectorArray(const double* values, int n) {
   return array;
 }
 
-py::array_t<double> Vec3Array(const Vec3& v) { return VectorArray(v.data(), 3); }
-
 // `value` as `n` finite numbers (any array-like of that size, or a number when n == 1).
 bool ReadNumbers(py::handle value, int n, double* out, std::string* problem) {
   Array array;
@@ -94,6 +92,8 @@ double Number(py::handle dict_value, const std::string& what) {
 }
 
 }  // namespace
+
+py::array_t<double> Vec3Array(const Vec3& v) { return VectorArray(v.data(), 3); }
 
 Vec3 PointFrom(py::handle value, const std::string& what) {
   Vec3 p;

@@ -4,6 +4,7 @@
 // (embedded.cpp); pybind11's types stay inside src/python.
 #pragma once
 
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
 #include <string>
@@ -120,5 +121,6 @@ py::object LoadClass(const std::string& spec);
 std::vector<Vec3> PointsFromArray(py::handle array, const std::string& what);
 py::object PointsArray(const std::vector<Vec3>& points);
 Vec3 PointFrom(py::handle value, const std::string& what);
+py::array_t<double> Vec3Array(const Vec3& v);  // (3,) [m, m/s, ...]
 
 }  // namespace aerobox::python

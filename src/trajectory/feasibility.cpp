@@ -29,8 +29,9 @@ struct Worst {
   }
 };
 
-void CheckAt(const PiecewiseTrajectory& trajectory, const FlatnessLimits& limits, double t,
-             Worst* worst) {
+// `to_rotors`: the inverse of limits.allocation, factorised once per check.
+void CheckAt(const PiecewiseTrajectory& trajectory, const FlatnessLimits& limits,
+             const Mat4& to_rotors, double t, Worst* worst) {
   const Vec3 v = trajectory.Evaluate3(t, kVelocity);
   const Vec3 a = trajectory.Evaluate3(t, kAcceleration);
   const Vec3 j = trajectory.Evaluate3(t, kJerk);
@@ -67,7 +68,7 @@ void CheckAt(const PiecewiseTrajectory& trajectory, const FlatnessLimits& limits
   const Vec3 moment = limits.inertia.cwiseProduct(alpha) + w.cross(j_w);
   Eigen::Vector4d wrench;
   wrench << limits.mass * thrust.norm(), moment;
-  const Eigen::Vector4d rotors = limits.allocation.partialPivLu().solve(wrench);
+  const Eigen::Vector4d rotors = to_rotors * wrench;
   // the rotors swing about their share of the weight: that swing scales with time squared
   const double hover = limits.mass * kGravity / 4.0;
   for (int i = 0; i < 4; ++i) {
@@ -90,7 +91,10 @@ FeasibilityCheck CheckFeasibility(const PiecewiseTrajectory& trajectory,
   // every dt, and at most kMaxSamples in the interval
   constexpr int kMaxSamples = 400;
   const int steps = std::clamp(static_cast<int>(std::ceil((t1 - t0) / dt)), 1, kMaxSamples);
-  for (int i = 0; i <= steps; ++i) CheckAt(trajectory, limits, t0 + (t1 - t0) * i / steps, &worst);
+  const Mat4 to_rotors = limits.allocation.inverse();
+  for (int i = 0; i <= steps; ++i) {
+    CheckAt(trajectory, limits, to_rotors, t0 + (t1 - t0) * i / steps, &worst);
+  }
   return worst.check;
 }
 
