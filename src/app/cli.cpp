@@ -29,7 +29,8 @@ namespace aerobox {
 namespace {
 
 // "X,Y,Z" from the command line [m].
-std::optional<Vec3> ParsePointOption(const std::string& text, const char* option) {
+std::optional<Vec3> ParsePointOption(const std::string& text, const char* option,
+                                     const char* unit = "metres") {
   if (text.empty()) return std::nullopt;
   Vec3 point;
   std::istringstream fields(text);
@@ -44,8 +45,9 @@ std::optional<Vec3> ParsePointOption(const std::string& text, const char* option
     }
   }
   if (count != 3) {
-    throw InputError({"command line", 0}, option,
-                     "expected three numbers X,Y,Z in metres, got '" + text + "'");
+    throw InputError(
+        {"command line", 0}, option,
+        std::string("expected three numbers X,Y,Z in ") + unit + ", got '" + text + "'");
   }
   return point;
 }
@@ -375,6 +377,14 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   fly->add_option("--planner-module", python_modules.planner,
                   "a Python planner class, file.py:Class: Class().plan(world, start, goal) -> "
                   "(N, 3) waypoints [m]");
+  std::string wind_text;
+  double turbulence = -1;
+  fly->add_option("--wind", wind_text,
+                  "mean wind X,Y,Z [m/s], world frame ([wind] mean); brings drag unless [aero] "
+                  "turns it off");
+  fly->add_option("--turbulence", turbulence,
+                  "Dryden turbulence of this standard deviation on every axis [m/s]; 0: none "
+                  "([wind] turbulence and intensity)");
   fly->add_option("--frames-every", fly_options.frames_every,
                   "also write frames/frame_NNNNNN.png every this many seconds of flight");
 
@@ -438,6 +448,18 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     overrides.start = ParsePointOption(start_text, "--start");
     overrides.goal = ParsePointOption(goal_text, "--goal");
     if (seed_given) overrides.seed = seed;
+    if (!wind_text.empty()) {
+      overrides.wind_mean = ParsePointOption(wind_text, "--wind", "m/s");
+      if (overrides.wind_mean->norm() > 50) {
+        throw InputError({"command line", 0}, "--wind", "expected at most 50 m/s");
+      }
+    }
+    if (turbulence != -1) {
+      if (!(turbulence >= 0 && turbulence <= 20)) {
+        throw InputError({"command line", 0}, "--turbulence", "expected 0 to 20 m/s");
+      }
+      overrides.turbulence = turbulence;
+    }
     FlightSetup setup = LoadFlightSetup(input, overrides);
     if (!objective.empty()) {
       if (objective != "min-time" && objective != "snap") {

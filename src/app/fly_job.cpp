@@ -90,7 +90,7 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
       options.telemetry_rate > 0
           ? static_cast<int>(std::lround(setup.controller.rate / options.telemetry_rate))
           : 1;
-  CsvOutputs csv(folder, every);
+  CsvOutputs csv(folder, every, TelemetryExtrasFor(setup));
   RenderOutputs pictures(folder, setup, render, err);
   // the watchdog removes the video's temporary file if it has to end the process
   const std::string video_partial =

@@ -2,11 +2,13 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
 
 #include "common/fault_injection.h"
 #include "common/number_format.h"
+#include "common/seed.h"
 #include "scene/scene_mjcf.h"
 #include "vehicle/model_names.h"
 
@@ -90,6 +92,8 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
   }
   const double step = sim->timestep();
   const int divider = ControlDivider(loop.control_rate, step);
+  loop.wind.Validate();
+  loop.sensors.Validate(step);
   InnerLoops inner(loop.inner, *loop.vehicle);
   Controller& controller = *loop.controller;
   FlightResult result;
@@ -117,6 +121,20 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
   if (const std::optional<std::string> at = InjectedFault("nonfinite")) {
     if (!ParseNumber(*at, &nan_from)) nan_from = 0.0;
   }
+
+  // the air and the sensors, when asked for
+  std::optional<WindField> wind;
+  if (loop.wind.Enabled()) {
+    wind.emplace(loop.wind, StreamSeed(loop.seed, SeedStream::kTurbulence));
+  }
+  std::optional<SensorSuite> sensing;
+  if (loop.sensors.Enabled()) {
+    sensing.emplace(loop.sensors, loop.seed, step, 0.0, sim->VehicleState());
+  }
+  const bool air = wind.has_value() || loop.aero.Enabled();
+  Vec3 wind_W = wind ? wind->current() : Vec3::Zero();
+  Wrench aero;
+  double estimate_squared_sum = 0.0;
 
   const double max_thrust = loop.vehicle->MaxRotorThrust();
   const double min_thrust = loop.vehicle->MinRotorThrust();
@@ -171,12 +189,13 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
       if (t >= nan_from) setpoint.p_W.x() = std::numeric_limits<double>::quiet_NaN();
     }
 
-    // the controller at its rate, the inner loops every step
-    if (control_step && !controller.Update(t, state, setpoint, &command)) {
+    // the controller at its rate, the inner loops every step, on what the sensors tell
+    const State seen = sensing ? sensing->Estimate() : state;
+    if (control_step && !controller.Update(t, seen, setpoint, &command)) {
       result.status = FlightStatus::kNonFinite;
       break;
     }
-    if (!inner.Run(command, state, step, &inner_out)) {
+    if (!inner.Run(command, seen, step, &inner_out)) {
       result.status = FlightStatus::kNonFinite;
       break;
     }
@@ -188,10 +207,17 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
       const double c =
           loop.clearance ? loop.clearance(state.p_W) : std::numeric_limits<double>::infinity();
       result.min_clearance = std::min(result.min_clearance, c);
+      if (sensing) {
+        const double e = (seen.p_W - state.p_W).norm();
+        estimate_squared_sum += e * e;
+        result.estimate_max_error = std::max(result.estimate_max_error, e);
+      }
       if (loop.telemetry) {
         controller.Report(&report);
         loop.telemetry(
-            {t, state, setpoint, command, inner_out, sim->RotorThrusts(), error, c, report});
+            {t, state, setpoint, command, inner_out, sim->RotorThrusts(), error, c, report, wind_W,
+             aero.force_W,
+             sensing ? std::optional<EstimateSample>(sensing->Sample(state)) : std::nullopt});
       }
     }
     if (error > params.flyaway_distance) {
@@ -217,9 +243,18 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
       result.saturated_time += step;
     }
     result.top_speed = std::max(result.top_speed, state.v_W.norm());
+    if (air) {
+      // the wind where the vehicle is, and the drag it causes, held over the step
+      if (wind) wind_W = wind->Step(t, step, state.p_W.z() - loop.ground_z, state.v_W);
+      result.max_wind = std::max(result.max_wind, wind_W.norm());
+      aero = AerodynamicWrench(*loop.vehicle, loop.aero, state, sim->RotorThrusts(), wind_W);
+      sim->SetExternalWrench(aero.force_W, aero.torque_W);
+    }
     sim->Step(commanded);
     ++result.steps;
-    result.distance += (sim->VehicleState().p_W - state.p_W).norm();
+    const State after = sim->VehicleState();
+    result.distance += (after.p_W - state.p_W).norm();
+    if (sensing) sensing->AfterStep(sim->time() - t0, state, after, sim->LinearAcceleration_W());
     // a warning means MuJoCo changed or distrusts the state (it resets the data after a bad
     // acceleration): nothing after it can be trusted
     result.message = sim->TakeNewWarnings();
@@ -243,6 +278,8 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
   }
   result.time = sim->time() - t0;
   result.rms_error = samples > 0 ? std::sqrt(squared_error_sum / samples) : 0.0;
+  if (sensing && samples > 0) result.estimate_rms_error = std::sqrt(estimate_squared_sum / samples);
+  if (air) sim->SetExternalWrench(Vec3::Zero(), Vec3::Zero());
   return result;
 }
 

@@ -4,12 +4,16 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "common/flat_output.h"
 #include "control/controllers.h"
+#include "disturbance/aero.h"
+#include "disturbance/wind.h"
+#include "estimation/sensing.h"
 #include "map/map.h"
 #include "sim/simulation.h"
 #include "trajectory/polynomial.h"
@@ -49,6 +53,11 @@ struct TelemetrySample {
   double position_error = 0.0;        // |p - p_des| [m]
   double clearance = 0.0;             // to the nearest obstacle [m]
   std::vector<double> report;         // the controller's own columns (ReportColumns)
+  Vec3 wind_W = Vec3::Zero();         // the wind at the vehicle [m/s]
+  Vec3 aero_force_W = Vec3::Zero();   // drag on the vehicle [N]
+  // With sensors on: the estimate the controller flew on, its error and the readings; empty
+  // otherwise (the controller saw the true state).
+  std::optional<EstimateSample> estimate;
 };
 
 struct FlightResult {
@@ -67,6 +76,10 @@ struct FlightResult {
   // commanded at a limit (the mixer had no authority left there) [s]
   double peak_rotor_fraction = 0.0;
   double saturated_time = 0.0;
+  // with sensors on: the estimate's position error |p_est - p| [m] over the flight
+  double estimate_rms_error = 0.0;
+  double estimate_max_error = 0.0;
+  double max_wind = 0.0;  // [m/s] the strongest wind met
   double AverageSpeed() const { return time > 0 ? distance / time : 0.0; }  // [m/s]
 };
 
@@ -96,6 +109,13 @@ struct FlightLoop {
   std::function<double(const Vec3&)> clearance;
   // one sample per control step; may be empty
   std::function<void(const TelemetrySample&)> telemetry;
+  // The air and the sensors; all off by default, and then the flight is the ideal one, step
+  // for step. With sensors on, the controller and the inner loops fly on the estimate.
+  WindParams wind;
+  AeroParams aero;
+  SensorParams sensors;
+  std::uint64_t seed = 1;  // the turbulence's and the sensors' (common/seed.h streams)
+  double ground_z = 0.0;   // [m] the floor's height, for the turbulence's scale lengths
 };
 
 // Flies the reference from the simulation's current state (at rest on the floor or in the air

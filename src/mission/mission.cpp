@@ -101,6 +101,7 @@ MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
   loop.control_rate = setup.controller.rate;
   loop.inner = setup.controller.inner;
   loop.clearance = [&world](const Vec3& p) { return world.Clearance(p); };
+  AddAirAndSensors(setup, &loop);
   if (!parts.observers.empty()) {
     loop.telemetry = [&parts](const TelemetrySample& s) {
       for (MissionObserver* observer : parts.observers) observer->OnSample(s);

@@ -19,6 +19,7 @@ void FlightSetup::Validate() const {
   vehicle.Validate();
   controller.Validate();
   flight.Validate();
+  wind.Validate();
   PlannerCollision().Validate();
   TrajectoryCollision().Validate();
   planning.rrt.Validate();
@@ -31,6 +32,14 @@ void FlightSetup::Validate() const {
   if (planning.trajectory_method == "given" && planning.given_trajectory.size() < 2) {
     throw std::invalid_argument("trajectory method \"given\" needs a [trajectory] file");
   }
+}
+
+void AddAirAndSensors(const FlightSetup& setup, FlightLoop* loop) {
+  loop->wind = setup.wind;
+  loop->aero = setup.aero;
+  loop->sensors = setup.sensors;
+  loop->seed = setup.seed;
+  loop->ground_z = setup.map.bounds.min.z();
 }
 
 std::string SceneMjcfFor(const FlightSetup& setup, const std::vector<bool>& keep_boxes) {

@@ -40,6 +40,9 @@ struct FlightSetup {
   QuadParams vehicle;                  // with the scenario's overrides
   ControllerConfig controller;         // [controller]
   FlightParams flight;                 // [flight]
+  WindParams wind;                     // [wind]
+  AeroParams aero;                     // [aero]
+  SensorParams sensors;                // [sensors]
 
   // The vehicle's box grown by the planner's clearance, and by the trajectory's.
   CollisionParams PlannerCollision() const;
@@ -47,6 +50,9 @@ struct FlightSetup {
   // Everything a scenario set, checked; throws std::invalid_argument naming the field.
   void Validate() const;
 };
+
+// Gives a flight loop the set-up's air and sensors: wind, drag, sensors, seed and floor.
+void AddAirAndSensors(const FlightSetup& setup, FlightLoop* loop);
 
 // The MJCF scene of a set-up: the vehicle rests at the start, the chase camera faces the goal.
 // `keep_boxes`: see SceneOptions (empty: every box of the map).

@@ -6,10 +6,17 @@ namespace aerobox {
 namespace {
 
 constexpr int kFixedColumns = 40;
+constexpr int kAirColumns = 6;
+constexpr int kSensorColumns = 22;
 
 }  // namespace
 
-CsvTable TelemetryTable(const std::vector<std::string>& controller_columns) {
+TelemetryExtras TelemetryExtrasFor(const FlightSetup& setup) {
+  return {setup.wind.Enabled() || setup.aero.Enabled(), setup.sensors.Enabled()};
+}
+
+CsvTable TelemetryTable(const std::vector<std::string>& controller_columns,
+                        const TelemetryExtras& extras) {
   std::vector<std::string> columns = {
       "t",     "x",      "y",      "z",       "vx",         "vy",     "vz",     "qw",
       "qx",    "qy",     "qz",     "wx",      "wy",         "wz",     "x_des",  "y_des",
@@ -17,18 +24,44 @@ CsvTable TelemetryTable(const std::vector<std::string>& controller_columns) {
       "f2",    "f3",     "f4",     "pos_err", "thrust_cmd", "wx_sp",  "wy_sp",  "wz_sp",
       "tau_x", "tau_y",  "tau_z",  "f1_cmd",  "f2_cmd",     "f3_cmd", "f4_cmd", "clearance"};
   columns.insert(columns.end(), controller_columns.begin(), controller_columns.end());
+  if (extras.air) {
+    columns.insert(columns.end(), {"wind_x", "wind_y", "wind_z", "drag_x", "drag_y", "drag_z"});
+  }
+  if (extras.sensors) {
+    columns.insert(
+        columns.end(),
+        {"est_x",  "est_y",  "est_z",   "est_vx",      "est_vy",   "est_vz", "est_qw", "est_qx",
+         "est_qy", "est_qz", "est_err", "est_att_err", "est_nees", "imu_gx", "imu_gy", "imu_gz",
+         "imu_ax", "imu_ay", "imu_az",  "meas_x",      "meas_y",   "meas_z"});
+  }
   return CsvTable(columns);
 }
 
-void AddTelemetryRow(const TelemetrySample& s, CsvTable* table) {
-  Eigen::VectorXd row(kFixedColumns + static_cast<int>(s.report.size()));
+void AddTelemetryRow(const TelemetrySample& s, CsvTable* table, const TelemetryExtras& extras) {
+  const int controller = static_cast<int>(s.report.size());
+  const int size = kFixedColumns + controller + (extras.air ? kAirColumns : 0) +
+                   (extras.sensors ? kSensorColumns : 0);
+  Eigen::VectorXd row(size);
   const Quat& q = s.state.q_WB;
   row.head<kFixedColumns>() << s.t, s.state.p_W, s.state.v_W, q.w(), q.x(), q.y(), q.z(),
       s.state.w_B, s.setpoint.p_W, s.setpoint.v_W, s.setpoint.a_W, s.rotor_thrusts,
       s.position_error, s.inner.thrust, s.inner.rate_setpoint_B, s.inner.moment_B,
       s.inner.mixer.thrusts, std::isfinite(s.clearance) ? s.clearance : -1.0;
-  for (size_t i = 0; i < s.report.size(); ++i)
-    row[kFixedColumns + static_cast<int>(i)] = s.report[i];
+  for (int i = 0; i < controller; ++i) row[kFixedColumns + i] = s.report[i];
+  int at = kFixedColumns + controller;
+  if (extras.air) {
+    row.segment<kAirColumns>(at) << s.wind_W, s.aero_force_W;
+    at += kAirColumns;
+  }
+  if (extras.sensors) {
+    const EstimateSample e = s.estimate.value_or(EstimateSample());
+    const Quat& qe = e.estimate.q_WB;
+    // before the first measurement arrives, the estimate's own position stands in
+    const Vec3 measured = e.pose ? e.pose->p_W : e.estimate.p_W;
+    row.segment<kSensorColumns>(at) << e.estimate.p_W, e.estimate.v_W, qe.w(), qe.x(), qe.y(),
+        qe.z(), e.error.head<3>().norm(), e.error.segment<3>(6).norm(), e.nees, e.imu.gyro_B,
+        e.imu.accel_B, measured;
+  }
   table->AddRow(row);
 }
 

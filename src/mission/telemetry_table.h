@@ -6,12 +6,24 @@
 #include <vector>
 
 #include "mission/flight.h"
+#include "mission/setup.h"
 #include "telemetry/csv_table.h"
 
 namespace aerobox {
 
-// `controller_columns`: Controller::ReportColumns() of the controller that flies.
-CsvTable TelemetryTable(const std::vector<std::string>& controller_columns = {});
-void AddTelemetryRow(const TelemetrySample& sample, CsvTable* table);
+// Columns that only a flight with wind or drag (`air`), or with sensors, has; without them the
+// table is the ideal flight's.
+struct TelemetryExtras {
+  bool air = false;      // wind_x..z [m/s], drag_x..z [N]
+  bool sensors = false;  // est_*, imu_*, meas_* (README: telemetry columns)
+};
+TelemetryExtras TelemetryExtrasFor(const FlightSetup& setup);
+
+// `controller_columns`: Controller::ReportColumns() of the controller that flies; they come
+// after the fixed columns and before the extras.
+CsvTable TelemetryTable(const std::vector<std::string>& controller_columns = {},
+                        const TelemetryExtras& extras = {});
+void AddTelemetryRow(const TelemetrySample& sample, CsvTable* table,
+                     const TelemetryExtras& extras = {});
 
 }  // namespace aerobox

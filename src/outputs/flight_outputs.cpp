@@ -34,8 +34,8 @@ void StopOnRequest::OnSample(const TelemetrySample&) {
   if (*stop_) throw Interrupted();
 }
 
-CsvOutputs::CsvOutputs(std::string folder, int every)
-    : folder_(std::move(folder)), every_(std::max(1, every)) {}
+CsvOutputs::CsvOutputs(std::string folder, int every, const TelemetryExtras& extras)
+    : folder_(std::move(folder)), every_(std::max(1, every)), extras_(extras) {}
 CsvOutputs::~CsvOutputs() = default;
 
 void CsvOutputs::OnPlan(const PlanOutcome& plan) {
@@ -49,17 +49,17 @@ void CsvOutputs::OnPlan(const PlanOutcome& plan) {
 void CsvOutputs::OnFlightStart(const Simulation&, const Controller& controller) {
   telemetry_file_ = std::make_unique<StreamingFile>((fs::path(folder_) / "telemetry.csv").string());
   controller_columns_ = controller.ReportColumns();
-  block_ = std::make_unique<CsvTable>(TelemetryTable(controller_columns_));
+  block_ = std::make_unique<CsvTable>(TelemetryTable(controller_columns_, extras_));
   header_length_ = block_->Text().size();
   telemetry_file_->Append(block_->Text());  // the header; blocks of rows follow
 }
 
 void CsvOutputs::OnSample(const TelemetrySample& sample) {
   if (samples_++ % every_ != 0) return;
-  AddTelemetryRow(sample, block_.get());
+  AddTelemetryRow(sample, block_.get(), extras_);
   if (block_->rows() < kTelemetryBlock) return;
   telemetry_file_->Append(block_->Text().substr(header_length_));
-  *block_ = TelemetryTable(controller_columns_);
+  *block_ = TelemetryTable(controller_columns_, extras_);
 }
 
 void CsvOutputs::OnFlightEnd(const Simulation&, const FlightResult&) {

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "mission/mission.h"
+#include "mission/telemetry_table.h"
 #include "render/renderer.h"
 #include "render/video_encoder.h"
 #include "telemetry/csv_table.h"
@@ -38,7 +39,8 @@ class StopOnRequest : public MissionObserver {
 class CsvOutputs : public MissionObserver {
  public:
   // `every`: one telemetry row per this many control steps
-  explicit CsvOutputs(std::string folder, int every = 1);
+  // `extras`: the columns of the flight's wind and sensors (TelemetryExtrasFor)
+  explicit CsvOutputs(std::string folder, int every = 1, const TelemetryExtras& extras = {});
   ~CsvOutputs() override;
   void OnPlan(const PlanOutcome& plan) override;
   void OnFlightStart(const Simulation&, const Controller& controller) override;
@@ -48,6 +50,7 @@ class CsvOutputs : public MissionObserver {
  private:
   std::string folder_;
   int every_;
+  TelemetryExtras extras_;
   long samples_ = 0;
   std::unique_ptr<StreamingFile> telemetry_file_;
   std::vector<std::string> controller_columns_;

@@ -93,7 +93,29 @@ JsonObject RunSummary(const FlightSetup& setup, const MissionResult& result,
         .Add("telemetry_rate_hz", flight.control_rate / counts.telemetry_every)
         .Add("video_frames", counts.video_frames)
         .Add("video_fps", counts.video_fps);
+    if (setup.sensors.Enabled()) {
+      summary.Add("estimate_rms_m", flight.estimate_rms_error)
+          .Add("estimate_max_m", flight.estimate_max_error);
+    }
+    if (setup.wind.Enabled()) summary.Add("max_wind_mps", flight.max_wind);
   }
+  // the world it flew in: what was on
+  JsonObject wind;
+  AddPoint(&wind, "mean_mps", setup.wind.mean);
+  wind.Add("turbulence", setup.wind.turbulence == Turbulence::kDryden ? "dryden" : "none")
+      .Add("intensity_mps", std::vector<double>{setup.wind.intensity.x(), setup.wind.intensity.y(),
+                                                setup.wind.intensity.z()})
+      .Add("gusts", static_cast<int>(setup.wind.gusts.size()));
+  summary.Add("wind", wind);
+  JsonObject aero;
+  aero.Add("body_drag", setup.aero.body_drag).Add("rotor_drag", setup.aero.rotor_drag);
+  summary.Add("aero", aero);
+  JsonObject sensors;
+  sensors.Add("imu", setup.sensors.imu.enabled)
+      .Add("position", !setup.sensors.position.enabled                           ? "none"
+                       : setup.sensors.position.kind == PositionSensorKind::kGps ? "gps"
+                                                                                 : "mocap");
+  summary.Add("sensors", sensors);
   JsonObject versions;
   versions.Add("aerobox", AEROBOX_VERSION).Add("mujoco", mj_versionString());
   summary.Add("versions", versions);

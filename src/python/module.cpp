@@ -200,6 +200,7 @@ class SimulatorCore {
     loop.control_rate = control_rate;
     loop.inner = setup_->controller.inner;
     loop.clearance = [this](const Vec3& p) { return world_.Clearance(p); };
+    AddAirAndSensors(*record->setup, &loop);
     loop.telemetry = [&record](const TelemetrySample& s) { record->samples.push_back(s); };
     const auto begin = std::chrono::steady_clock::now();
     record->flight = Checked([&] { return FlyTrajectory(reference, params, loop, &sim_); });
@@ -406,7 +407,7 @@ std::string WriteOutputs(const FlightRecord& record, const std::string& out_dir,
         MeasureTrajectory(TrajectoryParams(), &trajectory);
         plan.trajectory = trajectory;
       }
-      CsvOutputs csv(folder.path());
+      CsvOutputs csv(folder.path(), 1, TelemetryExtrasFor(setup));
       RenderOutputs pictures(folder.path(), setup, render, std::cerr);
       Simulation sim = Simulation::FromXml(SceneMjcfFor(setup), setup.name);
       pictures.OnScene(sim, {});

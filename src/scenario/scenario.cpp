@@ -10,6 +10,7 @@
 #include "map/map_reader.h"
 #include "planning/planner.h"
 #include "scenario/read_file.h"
+#include "scene/scene_mjcf.h"
 #include "vehicle/quad_params.h"
 
 namespace aerobox {
@@ -270,6 +271,10 @@ void ReadVehicle(const toml::table& table, const std::string& file, int table_li
       v.motor_time_constant = Number(node, file, field, 1e-4, 1);
     } else if (name == "collision_size") {
       v.collision_size = Vector(node, file, field, 1e-3, 10);
+    } else if (name == "body_drag") {
+      v.body_drag = Vector(node, file, field, 0, 10);
+    } else if (name == "rotor_drag") {
+      v.rotor_drag = Vector(node, file, field, 0, 10);
     } else {
       throw InputError(
           {file, line}, field,
@@ -277,7 +282,7 @@ void ReadVehicle(const toml::table& table, const std::string& file, int table_li
               KeyList({"kind", "mass", "inertia", "rotor_positions", "rotor_directions",
                        "max_rotor_thrust", "min_rotor_thrust", "rotor_speed_max", "rotor_speed_min",
                        "thrust_coefficient", "yaw_moment_per_thrust", "moment_coefficient",
-                       "motor_time_constant", "collision_size"}) +
+                       "motor_time_constant", "collision_size", "body_drag", "rotor_drag"}) +
               ")");
     }
   }
@@ -468,6 +473,207 @@ std::vector<TrajectorySample> ReadTrajectoryCsv(std::istream& in, const std::str
   return samples;
 }
 
+// A table or a boolean: `imu = true` or `[sensors.imu]` with keys.
+const toml::table* TableOrSwitch(const toml::node& node, const std::string& file,
+                                 const std::string& field, bool* enabled) {
+  if (node.is_boolean()) {
+    *enabled = node.as_boolean()->get();
+    return nullptr;
+  }
+  const toml::table* table = node.as_table();
+  if (table == nullptr)
+    throw InputError({file, LineOf(node)}, field, "expected true, false or a table");
+  *enabled = true;
+  return table;
+}
+
+// [wind]: mean, turbulence, intensity, min_airspeed and [[wind.gusts]]; checked as a whole at
+// the table.
+void ReadWind(const toml::table& table, const std::string& file, int table_line, WindParams* wind) {
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    const std::string field = "wind." + name;
+    if (name == "mean") {
+      wind->mean = Vector(node, file, field, -50, 50);
+    } else if (name == "turbulence") {
+      const std::string kind = Text(node, file, field);
+      if (kind != "dryden" && kind != "none") {
+        throw InputError({file, LineOf(node)}, field, "expected \"dryden\" or \"none\"");
+      }
+      wind->turbulence = kind == "dryden" ? Turbulence::kDryden : Turbulence::kNone;
+    } else if (name == "intensity") {
+      wind->intensity = Vector(node, file, field, 0, 20);
+    } else if (name == "min_airspeed") {
+      wind->min_airspeed = Number(node, file, field, 0.01, 100);
+    } else if (name == "gusts") {
+      const toml::array* gusts = node.as_array();
+      if (gusts == nullptr) {
+        throw InputError({file, LineOf(node)}, field,
+                         "expected [[wind.gusts]] tables (start, rise, duration, peak, direction)");
+      }
+      wind->gusts.clear();
+      for (size_t i = 0; i < gusts->size(); ++i) {
+        const std::string item = field + "[" + std::to_string(i) + "]";
+        const toml::table* g = (*gusts)[i].as_table();
+        if (g == nullptr) throw InputError({file, LineOf((*gusts)[i])}, item, "expected a table");
+        Gust gust;
+        for (const auto& [gkey, gnode] : *g) {
+          const std::string gname(gkey.str());
+          const std::string gfield = item + "." + gname;
+          if (gname == "start") {
+            gust.start = Number(gnode, file, gfield, 0, 1e5);
+          } else if (gname == "rise") {
+            gust.rise = Number(gnode, file, gfield, 1e-3, 1e4);
+          } else if (gname == "duration") {
+            gust.duration = Number(gnode, file, gfield, 2e-3, 1e5);
+          } else if (gname == "peak") {
+            gust.peak = Number(gnode, file, gfield, 0, 50);
+          } else if (gname == "direction") {
+            gust.direction = Vector(gnode, file, gfield, -1e3, 1e3);
+          } else {
+            throw InputError({file, LineOf(gnode)}, gfield,
+                             "unknown key (expected start, rise, duration, peak or direction)");
+          }
+        }
+        wind->gusts.push_back(gust);
+      }
+    } else {
+      throw InputError({file, LineOf(node)}, field,
+                       "unknown key (expected mean, turbulence, intensity, min_airspeed or "
+                       "gusts)");
+    }
+  }
+  try {
+    wind->Validate();
+  } catch (const std::invalid_argument& e) {
+    throw InputError({file, table_line}, "wind", e.what());
+  }
+}
+
+void ReadAero(const toml::table& table, const std::string& file, AeroParams* aero) {
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    const std::string field = "aero." + name;
+    if (name == "drag") {
+      aero->body_drag = aero->rotor_drag = Boolean(node, file, field);
+    } else if (name == "body_drag") {
+      aero->body_drag = Boolean(node, file, field);
+    } else if (name == "rotor_drag") {
+      aero->rotor_drag = Boolean(node, file, field);
+    } else {
+      throw InputError({file, LineOf(node)}, field,
+                       "unknown key (expected drag, body_drag or rotor_drag)");
+    }
+  }
+}
+
+void ReadImu(const toml::table& table, const std::string& file, ImuParams* imu) {
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    const std::string field = "sensors.imu." + name;
+    double* value = name == "rate"                  ? &imu->rate
+                    : name == "gyro_noise_density"  ? &imu->gyro_noise_density
+                    : name == "accel_noise_density" ? &imu->accel_noise_density
+                    : name == "gyro_bias_walk"      ? &imu->gyro_bias_walk
+                    : name == "accel_bias_walk"     ? &imu->accel_bias_walk
+                    : name == "gyro_turn_on_bias"   ? &imu->gyro_turn_on_bias
+                    : name == "accel_turn_on_bias"  ? &imu->accel_turn_on_bias
+                                                    : nullptr;
+    if (value == nullptr) {
+      throw InputError({file, LineOf(node)}, field,
+                       "unknown key (expected rate, gyro_noise_density, accel_noise_density, "
+                       "gyro_bias_walk, accel_bias_walk, gyro_turn_on_bias or "
+                       "accel_turn_on_bias)");
+    }
+    *value =
+        name == "rate" ? Number(node, file, field, 1, 1000) : Number(node, file, field, 0, 100);
+  }
+}
+
+// The kind first (its defaults), then the overrides.
+void ReadPositionSensor(const toml::table& table, const std::string& file,
+                        PositionSensorParams* position) {
+  if (const toml::node* kind = table.get("kind")) {
+    const std::string name = Text(*kind, file, "sensors.position.kind");
+    if (name != "mocap" && name != "gps") {
+      throw InputError({file, LineOf(*kind)}, "sensors.position.kind",
+                       "expected \"mocap\" or \"gps\"");
+    }
+    *position = name == "gps" ? PositionSensorParams::Gps() : PositionSensorParams();
+  }
+  position->enabled = true;
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    const std::string field = "sensors.position." + name;
+    if (name == "kind") continue;
+    if (name == "rate") {
+      position->rate = Number(node, file, field, 0.1, 1000);
+    } else if (name == "noise") {
+      position->noise = Vector(node, file, field, 1e-6, 100);
+    } else if (name == "latency") {
+      position->latency = Number(node, file, field, 0, 0.5);
+    } else if (name == "attitude_noise") {
+      position->attitude_noise = Number(node, file, field, 0, 1);
+    } else {
+      throw InputError({file, LineOf(node)}, field,
+                       "unknown key (expected kind, rate, noise, latency or attitude_noise)");
+    }
+  }
+}
+
+void ReadEstimator(const toml::table& table, const std::string& file, EstimatorParams* e) {
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    const std::string field = "sensors.estimator." + name;
+    if (name == "position_sigma") {
+      e->position_sigma = Number(node, file, field, 1e-6, 100);
+    } else if (name == "velocity_sigma") {
+      e->velocity_sigma = Number(node, file, field, 1e-6, 100);
+    } else if (name == "attitude_sigma") {
+      e->attitude_sigma = Number(node, file, field, 1e-6, 3);
+    } else if (name == "history") {
+      e->history = Number(node, file, field, 0.01, 10);
+    } else {
+      throw InputError({file, LineOf(node)}, field,
+                       "unknown key (expected position_sigma, velocity_sigma, attitude_sigma or "
+                       "history)");
+    }
+  }
+}
+
+// [sensors]: imu and position, each true, false or a table; [sensors.estimator]; checked as a
+// whole at the table (both sensors or neither; rates that divide the 1 kHz physics).
+void ReadSensors(const toml::table& table, const std::string& file, int table_line,
+                 SensorParams* sensors) {
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    const std::string field = "sensors." + name;
+    if (name == "imu") {
+      if (const toml::table* t = TableOrSwitch(node, file, field, &sensors->imu.enabled)) {
+        ReadImu(*t, file, &sensors->imu);
+      }
+    } else if (name == "position") {
+      bool enabled = false;
+      if (const toml::table* t = TableOrSwitch(node, file, field, &enabled)) {
+        ReadPositionSensor(*t, file, &sensors->position);
+      }
+      sensors->position.enabled = enabled;
+    } else if (name == "estimator") {
+      const toml::table* t = node.as_table();
+      if (t == nullptr) throw InputError({file, LineOf(node)}, field, "expected a table");
+      ReadEstimator(*t, file, &sensors->estimator);
+    } else {
+      throw InputError({file, LineOf(node)}, field,
+                       "unknown key (expected imu, position or estimator)");
+    }
+  }
+  try {
+    sensors->Validate(SceneOptions().timestep);
+  } catch (const std::invalid_argument& e) {
+    throw InputError({file, table_line}, "sensors", e.what());
+  }
+}
+
 Scenario ReadScenario(std::istream& in, const std::string& file) {
   std::ostringstream buffer;
   buffer << in.rdbuf();
@@ -531,6 +737,15 @@ Scenario ReadScenario(std::istream& in, const std::string& file) {
         ReadController(*section, file, LineOf(node), &scenario.controller);
       }
       if (name == "flight") ReadFlight(*section, file, &scenario.flight);
+    } else if (name == "wind" || name == "aero" || name == "sensors") {
+      const toml::table* section = node.as_table();
+      if (section == nullptr) throw InputError(where, name, "expected a table [" + name + "]");
+      if (name == "wind") ReadWind(*section, file, LineOf(node), &scenario.wind);
+      if (name == "aero") {
+        ReadAero(*section, file, &scenario.aero);
+        scenario.aero_given = true;
+      }
+      if (name == "sensors") ReadSensors(*section, file, LineOf(node), &scenario.sensors);
     } else if (name == "render") {
       const toml::table* section = node.as_table();
       if (section == nullptr) throw InputError(where, name, "expected a table [" + name + "]");
@@ -541,7 +756,8 @@ Scenario ReadScenario(std::istream& in, const std::string& file) {
     } else {
       throw InputError(where, name,
                        "unknown key (expected name, map, start, goal, seed, [planner], "
-                       "[trajectory], [vehicle], [controller], [flight] or [render])");
+                       "[trajectory], [vehicle], [controller], [flight], [wind], [aero], "
+                       "[sensors] or [render])");
     }
   }
   // a missing key belongs to the top-level table, which starts at line 1
@@ -599,6 +815,18 @@ FlightSetup SetupFrom(const std::string& path, std::optional<Scenario> scenario,
     setup.vehicle = scenario->vehicle;
     setup.controller = scenario->controller;
     setup.flight = scenario->flight;
+    setup.wind = scenario->wind;
+    setup.aero = scenario->aero;
+    setup.sensors = scenario->sensors;
+  }
+  if (overrides.wind_mean) setup.wind.mean = *overrides.wind_mean;
+  if (overrides.turbulence) {
+    setup.wind.turbulence = *overrides.turbulence > 0 ? Turbulence::kDryden : Turbulence::kNone;
+    setup.wind.intensity = Vec3::Constant(*overrides.turbulence);
+  }
+  // wind moves the vehicle through drag only: it comes with drag unless [aero] says otherwise
+  if (setup.wind.Enabled() && !(scenario && scenario->aero_given)) {
+    setup.aero.body_drag = setup.aero.rotor_drag = true;
   }
 
   std::optional<StartGoal> side_file;

@@ -29,6 +29,9 @@ namespace aerobox {
 //                                        #   overrides of its values (README: The vehicle)
 //   [controller]                         # optional: kind ("cascade", "se3"), rate, gains
 //   [flight]                             # optional: settle_time, tolerances, yaw
+//   [wind]                               # optional: mean, turbulence, intensity, gusts
+//   [aero]                               # optional: drag, body_drag, rotor_drag
+//   [sensors]                            # optional: imu, position, estimator
 //   [render]                             # optional table (no keys defined yet)
 struct Scenario {
   std::string name;
@@ -45,6 +48,10 @@ struct Scenario {
   QuadParams vehicle;                  // the kind's values with the table's overrides
   ControllerConfig controller;         // [controller]
   FlightParams flight;                 // [flight]
+  WindParams wind;                     // [wind]
+  AeroParams aero;                     // [aero]
+  bool aero_given = false;             // [aero] was there (else wind brings drag)
+  SensorParams sensors;                // [sensors]
 };
 
 // A trajectory in the form aerobox's trajectory.csv has (header t,x,y,z,vx,vy,vz,ax,ay,az, one
@@ -58,6 +65,8 @@ struct SetupOverrides {
   std::optional<Vec3> start;
   std::optional<Vec3> goal;
   std::optional<std::uint64_t> seed;
+  std::optional<Vec3> wind_mean;     // [m/s] --wind
+  std::optional<double> turbulence;  // [m/s] --turbulence: Dryden with this intensity, 0: none
 };
 
 // `path` is a scenario (.toml) or a map (.txt, .json, .csv). Start and goal come from, in order:

@@ -83,6 +83,14 @@ void Simulation::Step(const Vec4& thrust_commands) {
   mj_step(model_.get(), data_.get());
 }
 
+void Simulation::SetExternalWrench(const Vec3& force_W, const Vec3& torque_W) {
+  double* applied = data_->xfrc_applied + 6 * body_id_;
+  Eigen::Map<Vec3> force(applied);
+  Eigen::Map<Vec3> torque(applied + 3);
+  force = force_W;
+  torque = torque_W;
+}
+
 Vec4 Simulation::RotorThrusts() const {
   Vec4 thrusts;
   for (int i = 0; i < kNumRotors; ++i) {

@@ -43,6 +43,10 @@ class Simulation {
   // the produced thrust follows the command with the motor lag.
   void Step(const Vec4& thrust_commands);
 
+  // A force [N] and torque [N m] in the world frame on the vehicle at its centre of mass (wind
+  // and drag), applied by every Step until set again (MuJoCo's xfrc_applied).
+  void SetExternalWrench(const Vec3& force_W, const Vec3& torque_W);
+
   // Thrust each rotor produces now [N]: the motor-lag state.
   Vec4 RotorThrusts() const;
   // Sets the produced thrusts and the commands (e.g. start in hover without spin-up).

@@ -38,6 +38,9 @@ QuadParams Crazyflie() {
   // brushed motors are slow, so the later value is the one taken.
   p.motor_time_constant = 0.072;
   p.collision_size = Vec3(0.10, 0.10, 0.03);  // 92 x 92 x 29 mm over the propellers
+  // 0.5 rho Cd A as for the Tello, with its 92 x 29 mm side faces and about half of its
+  // 92 x 92 mm outline solid from above (an estimate); the rotor drag as the Tello's
+  p.body_drag = Vec3(1.6e-3, 1.6e-3, 2.5e-3);
   // no published top speed; its thrust-to-weight of about 2 and flights in the Crazyswarm
   // papers put a safe cruise below 4 m/s (an estimate)
   p.max_speed = 4.0;
@@ -52,6 +55,13 @@ void QuadParams::Validate() const {
   RequirePositive(mass, "mass");
   for (int i = 0; i < 3; ++i) RequirePositive(inertia[i], "inertia");
   for (int i = 0; i < 3; ++i) RequirePositive(collision_size[i], "collision_size");
+  for (int i = 0; i < 3; ++i) {
+    if (!(body_drag[i] >= 0 && std::isfinite(body_drag[i])) ||
+        !(rotor_drag[i] >= 0 && std::isfinite(rotor_drag[i]))) {
+      throw std::invalid_argument("QuadParams.body_drag and rotor_drag must be >= 0, got " +
+                                  FormatVector(body_drag) + " and " + FormatVector(rotor_drag));
+    }
+  }
   for (int i = 0; i < kNumRotors; ++i) {
     if (!rotor_positions_B[i].allFinite() || rotor_positions_B[i].head<2>().norm() < 1e-3) {
       throw std::invalid_argument("QuadParams.rotor_positions[" + std::to_string(i) +

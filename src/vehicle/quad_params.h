@@ -60,6 +60,20 @@ struct QuadParams {
   // Top speed [m/s]: DJI's specification for the Tello, 8 m/s. Trajectories stay below it.
   double max_speed = 8.0;
 
+  // Body (parasitic) drag, quadratic in the airspeed, per body axis [N / (m/s)^2] (RotorPy's
+  // c_Dx, c_Dy, c_Dz): F_B = -c |v| v with v the airspeed in the body frame. 0.5 rho Cd A with
+  // rho = 1.2 kg/m^3, Cd = 1 (a bluff box) and the Tello's faces: 98 x 41 mm seen from the
+  // front, 92.5 x 41 mm from the side, 98 x 92.5 mm from above. An estimate: at 8 m/s it costs
+  // 0.15 N, a fifth of the weight.
+  Vec3 body_drag = Vec3(2.4e-3, 2.3e-3, 5.4e-3);
+
+  // Rotor (induced) drag per newton of the rotor's thrust and per m/s of its airspeed, per body
+  // axis [N / (N m/s) = s/m]: F_B = -T_i diag(k) v_i, with v_i the airspeed at rotor i
+  // (Faessler, Franchi and Scaramuzza 2018: drag linear in the speed, proportional to thrust;
+  // they identified 0.26-0.28 1/s mass-normalised at hover, 0.027 s/m per newton of thrust).
+  // Taken for this size as well (an estimate); none along the rotor axis.
+  Vec3 rotor_drag = Vec3(0.027, 0.027, 0.0);
+
   // Collision body: a box of these full sides [m], centred at the body origin. The Tello's
   // 98 x 92.5 x 41 mm rounded up to cover the guards.
   Vec3 collision_size = Vec3(0.10, 0.10, 0.05);

@@ -1,0 +1,117 @@
+#include "estimation/sensors.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace aerobox {
+namespace {
+
+void RequireNonNegative(double value, const std::string& field) {
+  if (!(value >= 0 && std::isfinite(value))) {
+    throw std::invalid_argument(field + ": expected a finite number >= 0");
+  }
+}
+
+}  // namespace
+
+Quat RotationVectorToQuat(const Vec3& phi) {
+  const double angle = phi.norm();
+  if (angle < 1e-12) return Quat(1.0, 0.5 * phi.x(), 0.5 * phi.y(), 0.5 * phi.z()).normalized();
+  return Quat(Eigen::AngleAxisd(angle, phi / angle));
+}
+
+Vec3 QuatToRotationVector(const Quat& q) {
+  Quat u = q.normalized();
+  if (u.w() < 0) u.coeffs() = -u.coeffs();  // the shorter way round
+  const double s = u.vec().norm();
+  if (s < 1e-12) return 2.0 * u.vec();
+  return 2.0 * std::atan2(s, u.w()) * u.vec() / s;
+}
+
+void ImuParams::Validate() const {
+  if (!(rate > 0 && std::isfinite(rate))) throw std::invalid_argument("imu.rate: expected > 0 Hz");
+  RequireNonNegative(gyro_noise_density, "imu.gyro_noise_density");
+  RequireNonNegative(accel_noise_density, "imu.accel_noise_density");
+  RequireNonNegative(gyro_bias_walk, "imu.gyro_bias_walk");
+  RequireNonNegative(accel_bias_walk, "imu.accel_bias_walk");
+  RequireNonNegative(gyro_turn_on_bias, "imu.gyro_turn_on_bias");
+  RequireNonNegative(accel_turn_on_bias, "imu.accel_turn_on_bias");
+}
+
+Imu::Imu(const ImuParams& params, std::uint64_t seed) : params_(params), rng_(seed) {
+  params_.Validate();
+  gyro_bias_ = Noise(params_.gyro_turn_on_bias);
+  accel_bias_ = Noise(params_.accel_turn_on_bias);
+}
+
+Vec3 Imu::Noise(double sigma) { return sigma * Vec3(normal_(rng_), normal_(rng_), normal_(rng_)); }
+
+void Imu::Accumulate(double step, const State& before, const Vec3& after_w_B, const Vec3& a_W) {
+  // MuJoCo's semi-implicit Euler: the step's acceleration acts at its start's attitude, and the
+  // attitude turns with the step's final angular velocity
+  const Vec3 specific_W = a_W + Vec3(0, 0, kGravity);
+  velocity_ += before.q_WB.conjugate() * specific_W * step;
+  rotation_ += after_w_B * step;
+  interval_ += step;
+}
+
+ImuSample Imu::Read(double t) {
+  ImuSample s;
+  s.t = t;
+  s.interval = interval_;
+  if (interval_ > 0) {
+    // white noise of density N averaged over the interval T: N / sqrt(T); the biases walk
+    const double root = std::sqrt(interval_);
+    s.gyro_B = rotation_ / interval_ + gyro_bias_ + Noise(params_.gyro_noise_density / root);
+    s.accel_B = velocity_ / interval_ + accel_bias_ + Noise(params_.accel_noise_density / root);
+    gyro_bias_ += Noise(params_.gyro_bias_walk * root);
+    accel_bias_ += Noise(params_.accel_bias_walk * root);
+  }
+  rotation_.setZero();
+  velocity_.setZero();
+  interval_ = 0.0;
+  return s;
+}
+
+PositionSensorParams PositionSensorParams::Gps() {
+  PositionSensorParams p;
+  p.kind = PositionSensorKind::kGps;
+  p.rate = 10.0;
+  p.noise = Vec3(0.5, 0.5, 1.0);
+  p.latency = 0.1;
+  p.attitude_noise = 0.0;
+  return p;
+}
+
+void PositionSensorParams::Validate() const {
+  if (!(rate > 0 && std::isfinite(rate)))
+    throw std::invalid_argument("position.rate: expected > 0 Hz");
+  for (int i = 0; i < 3; ++i) RequireNonNegative(noise[i], "position.noise");
+  if (!(noise.minCoeff() > 0)) throw std::invalid_argument("position.noise: expected > 0 m");
+  RequireNonNegative(latency, "position.latency");
+  if (latency > 1.0) throw std::invalid_argument("position.latency: expected at most 1 s");
+  RequireNonNegative(attitude_noise, "position.attitude_noise");
+  if (kind == PositionSensorKind::kGps && attitude_noise > 0) {
+    throw std::invalid_argument("position.attitude_noise: a GPS measures no attitude");
+  }
+}
+
+PositionSensor::PositionSensor(const PositionSensorParams& params, std::uint64_t seed)
+    : params_(params), rng_(seed) {
+  params_.Validate();
+}
+
+PoseMeasurement PositionSensor::Measure(double t, const State& truth) {
+  PoseMeasurement m;
+  m.t = t;
+  const Vec3 n(normal_(rng_), normal_(rng_), normal_(rng_));
+  m.p_W = truth.p_W + params_.noise.cwiseProduct(n);
+  if (params_.attitude_noise > 0) {
+    const Vec3 phi(normal_(rng_), normal_(rng_), normal_(rng_));
+    m.q_WB = (truth.q_WB * RotationVectorToQuat(params_.attitude_noise * phi)).normalized();
+  }
+  return m;
+}
+
+}  // namespace aerobox
