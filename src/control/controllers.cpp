@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/drag.h"
 #include "common/number_format.h"
 #include "control/cascade.h"
 
@@ -32,6 +33,31 @@ Registry<ControllerFactory>& Controllers() {
   return registry;
 }
 
+namespace {
+
+class DragFeedForward : public Controller {
+ public:
+  DragFeedForward(std::unique_ptr<Controller> inner, const DragModel& drag)
+      : inner_(std::move(inner)), drag_(drag) {}
+  bool Update(double t, const State& state, const FlatOutput& setpoint,
+              ControlCommand* command) override {
+    return inner_->Update(t, state, CompensateDrag(setpoint, drag_), command);
+  }
+  std::vector<std::string> ReportColumns() const override { return inner_->ReportColumns(); }
+  void Report(std::vector<double>* values) const override { inner_->Report(values); }
+
+ private:
+  std::unique_ptr<Controller> inner_;
+  DragModel drag_;
+};
+
+}  // namespace
+
+std::unique_ptr<Controller> WithDragFeedForward(std::unique_ptr<Controller> inner,
+                                                const DragModel& drag) {
+  return std::make_unique<DragFeedForward>(std::move(inner), drag);
+}
+
 std::unique_ptr<Controller> MakeController(const ControllerConfig& config,
                                            const QuadParams& vehicle) {
   const ControllerFactory* factory = Controllers().Find(config.kind);
@@ -39,7 +65,9 @@ std::unique_ptr<Controller> MakeController(const ControllerConfig& config,
     throw std::invalid_argument("unknown controller '" + config.kind + "' (expected " +
                                 Controllers().NameList() + ")");
   }
-  return (*factory)(config, vehicle);
+  std::unique_ptr<Controller> controller = (*factory)(config, vehicle);
+  if (!config.drag_feedforward) return controller;
+  return WithDragFeedForward(std::move(controller), LumpedDrag(vehicle));
 }
 
 }  // namespace aerobox

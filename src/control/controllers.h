@@ -23,6 +23,10 @@ struct ControllerConfig {
   PositionControlParams cascade;  // kind "cascade": the position and velocity loops
   Se3Params se3;                  // kind "se3"
   InnerLoopParams inner;          // the attitude and rate loops below any command that needs them
+  // Feed the vehicle's own drag (LumpedDrag, in still air) forward: the controller is given the
+  // acceleration and jerk the thrust must produce, drag included. Scenarios turn it on with
+  // [aero] unless [controller] drag_feedforward says otherwise.
+  bool drag_feedforward = false;
 
   // Throws std::invalid_argument naming the field.
   void Validate() const;
@@ -34,7 +38,13 @@ using ControllerFactory =
 // The registry, with the built-ins already in it.
 Registry<ControllerFactory>& Controllers();
 
-// The controller `config.kind` names; throws std::invalid_argument for an unknown kind.
+// A controller that flies `inner` with drag fed forward: each setpoint goes through
+// CompensateDrag with `drag` (common/drag.h) in still air.
+std::unique_ptr<Controller> WithDragFeedForward(std::unique_ptr<Controller> inner,
+                                                const DragModel& drag);
+
+// The controller `config.kind` names (with drag fed forward when config asks); throws
+// std::invalid_argument for an unknown kind.
 std::unique_ptr<Controller> MakeController(const ControllerConfig& config,
                                            const QuadParams& vehicle);
 

@@ -271,6 +271,13 @@ TrajectoryParams TrajectoryParamsFor(const FlightSetup& setup) {
   limits.max_rotor_thrust = v.MaxRotorThrust();
   limits.max_speed = v.max_speed;
   limits.yaw = 0.0;  // the flight holds the start's yaw, level at rest (FlyTrajectory)
+  if (setup.aero.Enabled()) {
+    // the thrust also pays for the drag of the parts that are on, in the mean wind
+    const DragModel drag = LumpedDrag(v);
+    if (setup.aero.rotor_drag) limits.drag.linear = drag.linear;
+    if (setup.aero.body_drag) limits.drag.quadratic = drag.quadratic;
+    limits.wind = setup.wind.mean;
+  }
   return params;
 }
 

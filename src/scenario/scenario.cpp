@@ -347,6 +347,10 @@ void ReadController(const toml::table& table, const std::string& file, int table
       }
       continue;
     }
+    if (name == "drag_feedforward") {
+      config->drag_feedforward = Boolean(node, file, field);
+      continue;
+    }
     bool known = false;
     for (const auto& [gain_key, target] : gains) {
       if (name != gain_key) continue;
@@ -360,7 +364,7 @@ void ReadController(const toml::table& table, const std::string& file, int table
     }
     if (name == "max_tilt") se3.max_tilt = cascade.max_tilt;  // one tilt limit for both
     if (!known) {
-      std::string keys = "kind";
+      std::string keys = "kind, drag_feedforward";
       for (const auto& gain : gains) keys += std::string(", ") + gain.first;
       for (const Bounded& number : numbers) keys += std::string(", ") + number.key;
       throw InputError({file, LineOf(node)}, field, "unknown key (expected " + keys + ")");
@@ -735,6 +739,7 @@ Scenario ReadScenario(std::istream& in, const std::string& file) {
       if (name == "vehicle") ReadVehicle(*section, file, LineOf(node), &scenario);
       if (name == "controller") {
         ReadController(*section, file, LineOf(node), &scenario.controller);
+        scenario.drag_feedforward_given = section->get("drag_feedforward") != nullptr;
       }
       if (name == "flight") ReadFlight(*section, file, &scenario.flight);
     } else if (name == "wind" || name == "aero" || name == "sensors") {
@@ -827,6 +832,10 @@ FlightSetup SetupFrom(const std::string& path, std::optional<Scenario> scenario,
   // wind moves the vehicle through drag only: it comes with drag unless [aero] says otherwise
   if (setup.wind.Enabled() && !(scenario && scenario->aero_given)) {
     setup.aero.body_drag = setup.aero.rotor_drag = true;
+  }
+  // a controller in drag knows its own: it feeds it forward unless [controller] says not to
+  if (!(scenario && scenario->drag_feedforward_given)) {
+    setup.controller.drag_feedforward = setup.aero.Enabled();
   }
 
   std::optional<StartGoal> side_file;

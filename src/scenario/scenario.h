@@ -44,14 +44,15 @@ struct Scenario {
   int goal_line = 0;
   std::uint64_t seed = 1;
   PlanningSettings planning;
-  std::string vehicle_kind = "tello";  // [vehicle] kind
-  QuadParams vehicle;                  // the kind's values with the table's overrides
-  ControllerConfig controller;         // [controller]
-  FlightParams flight;                 // [flight]
-  WindParams wind;                     // [wind]
-  AeroParams aero;                     // [aero]
-  bool aero_given = false;             // [aero] was there (else wind brings drag)
-  SensorParams sensors;                // [sensors]
+  std::string vehicle_kind = "tello";   // [vehicle] kind
+  QuadParams vehicle;                   // the kind's values with the table's overrides
+  ControllerConfig controller;          // [controller]
+  bool drag_feedforward_given = false;  // [controller] drag_feedforward (else it follows [aero])
+  FlightParams flight;                  // [flight]
+  WindParams wind;                      // [wind]
+  AeroParams aero;                      // [aero]
+  bool aero_given = false;              // [aero] was there (else wind brings drag)
+  SensorParams sensors;                 // [sensors]
 };
 
 // A trajectory in the form aerobox's trajectory.csv has (header t,x,y,z,vx,vy,vz,ax,ay,az, one

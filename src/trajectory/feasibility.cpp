@@ -30,15 +30,28 @@ struct Worst {
 };
 
 // `to_rotors`: the inverse of limits.allocation, factorised once per check.
+// The acceleration and jerk the thrust must produce at t: the trajectory's, less drag's share.
+void ThrustOutputs(const PiecewiseTrajectory& trajectory, const FlatnessLimits& limits, double t,
+                   Vec3* a, Vec3* j) {
+  FlatOutput f;
+  f.v_W = trajectory.Evaluate3(t, kVelocity);
+  f.a_W = trajectory.Evaluate3(t, kAcceleration);
+  f.j_W = trajectory.Evaluate3(t, kJerk);
+  f = CompensateDrag(f, limits.drag, limits.wind);
+  *a = f.a_W;
+  *j = f.j_W;
+}
+
 void CheckAt(const PiecewiseTrajectory& trajectory, const FlatnessLimits& limits,
              const Mat4& to_rotors, double t, Worst* worst) {
   const Vec3 v = trajectory.Evaluate3(t, kVelocity);
-  const Vec3 a = trajectory.Evaluate3(t, kAcceleration);
-  const Vec3 j = trajectory.Evaluate3(t, kJerk);
+  const Vec3 a_path = trajectory.Evaluate3(t, kAcceleration);
+  Vec3 a, j;
+  ThrustOutputs(trajectory, limits, t, &a, &j);
   worst->Consider(v.norm() / limits.max_speed, 1, t, "speed");
   worst->Consider(std::abs(v.z()) / limits.max_vertical_speed, 1, t, "vertical speed");
   if (std::isfinite(limits.max_accel)) {
-    worst->Consider(a.norm() / limits.max_accel, 2, t, "acceleration");
+    worst->Consider(a_path.norm() / limits.max_accel, 2, t, "acceleration");
   }
   const Vec3 thrust = a + Vec3(0, 0, kGravity);
   if (thrust.z() <= 1e-3 * kGravity) {
@@ -58,10 +71,11 @@ void CheckAt(const PiecewiseTrajectory& trajectory, const FlatnessLimits& limits
   Vec3 unused;
   const double t_minus = std::max(0.0, t - h);
   const double t_plus = std::min(trajectory.duration(), t + h);
-  const Vec3 w_minus = BodyRates(trajectory.Evaluate3(t_minus, kAcceleration),
-                                 trajectory.Evaluate3(t_minus, kJerk), limits.yaw, &unused);
-  const Vec3 w_plus = BodyRates(trajectory.Evaluate3(t_plus, kAcceleration),
-                                trajectory.Evaluate3(t_plus, kJerk), limits.yaw, &unused);
+  Vec3 a_minus, j_minus, a_plus, j_plus;
+  ThrustOutputs(trajectory, limits, t_minus, &a_minus, &j_minus);
+  ThrustOutputs(trajectory, limits, t_plus, &a_plus, &j_plus);
+  const Vec3 w_minus = BodyRates(a_minus, j_minus, limits.yaw, &unused);
+  const Vec3 w_plus = BodyRates(a_plus, j_plus, limits.yaw, &unused);
   const Vec3 alpha =
       t_plus > t_minus ? Vec3((w_plus - w_minus) / (t_plus - t_minus)) : Vec3::Zero();
   const Vec3 j_w = limits.inertia.cwiseProduct(w);

@@ -1,13 +1,15 @@
 // What a vehicle can fly, checked along a trajectory by differential flatness (Mellinger and
 // Kumar 2011): from acceleration, jerk and snap at constant yaw follow the collective thrust,
 // the tilt, the body rates, the angular accelerations and, through the allocation matrix, each
-// rotor's thrust. No vehicle types here: the mission fills FlatnessLimits from QuadParams.
+// rotor's thrust, with drag's share when the limits carry a drag model. No vehicle types here:
+// the mission fills FlatnessLimits from QuadParams.
 #pragma once
 
 #include <limits>
 #include <string>
 #include <vector>
 
+#include "common/drag.h"
 #include "trajectory/polynomial.h"
 
 namespace aerobox {
@@ -24,6 +26,9 @@ struct FlatnessLimits {
   double max_vertical_speed = 3.0;  // [m/s]
   double max_accel = std::numeric_limits<double>::infinity();  // [m/s^2], an extra cap
   double yaw = 0.0;                                            // held along the trajectory [rad]
+  // Drag the thrust must also overcome, in the wind expected (none: the ideal vehicle)
+  DragModel drag;
+  Vec3 wind = Vec3::Zero();  // [m/s]
 
   bool valid() const { return mass > 0; }
 };

@@ -124,6 +124,10 @@ std::optional<QuadParams> BuiltinVehicle(const std::string& kind) {
 
 std::vector<std::string> BuiltinVehicleNames() { return {"crazyflie", "tello"}; }
 
+DragModel LumpedDrag(const QuadParams& params) {
+  return DragModel{params.rotor_drag * kGravity, params.body_drag / params.mass};
+}
+
 Vec3 RotorPosition_B(const QuadParams& params, int rotor) {
   return params.rotor_positions_B[rotor];
 }

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "common/drag.h"
 #include "common/types.h"
 
 namespace aerobox {
@@ -100,6 +101,11 @@ struct QuadParams {
 // The built-in vehicles by name ("tello", "crazyflie"), or nothing.
 std::optional<QuadParams> BuiltinVehicle(const std::string& kind);
 std::vector<std::string> BuiltinVehicleNames();
+
+// The vehicle's drag per unit mass, lumped in the world frame for planning and feed-forward:
+// rotor drag at hover thrust (k g) across the rotor disc, body drag (c / m), body axes taken as
+// the world's (near level flight).
+DragModel LumpedDrag(const QuadParams& params);
 
 // Rotor centre in the body frame [m].
 Vec3 RotorPosition_B(const QuadParams& params, int rotor);

@@ -273,4 +273,101 @@ TEST_CASE("[vehicle], [controller] and [flight]: errors name the line and the ke
   CHECK(scenario.vehicle.yaw_moment_per_thrust == doctest::Approx(0.006));
 }
 
+TEST_CASE("[wind], [aero] and [sensors]: the keys") {
+  std::istringstream in(R"(map = "m.txt"
+[wind]
+mean = [3.0, 0.0, 0.0]
+turbulence = "dryden"
+intensity = 0.8
+[[wind.gusts]]
+start = 1.0
+peak = 4.0
+direction = [0, 1, 0]
+[aero]
+rotor_drag = false
+[sensors]
+imu = true
+[sensors.position]
+kind = "gps"
+latency = 0.05
+[sensors.estimator]
+attitude_sigma = 0.05
+)");
+  const Scenario s = ReadScenario(in, "scenes/x/scenario.toml");
+  CHECK(s.wind.mean == Vec3(3, 0, 0));
+  CHECK(s.wind.turbulence == Turbulence::kDryden);
+  CHECK(s.wind.intensity == Vec3::Constant(0.8));
+  REQUIRE(s.wind.gusts.size() == 1);
+  CHECK(s.wind.gusts[0].peak == 4.0);
+  CHECK(s.wind.gusts[0].rise == Gust().rise);  // the default
+  CHECK_FALSE(s.aero.rotor_drag);
+  CHECK_FALSE(s.aero.body_drag);
+  CHECK(s.aero_given);
+  CHECK(s.sensors.imu.enabled);
+  CHECK(s.sensors.position.enabled);
+  CHECK(s.sensors.position.kind == PositionSensorKind::kGps);
+  CHECK(s.sensors.position.rate == PositionSensorParams::Gps().rate);  // the kind's default
+  CHECK(s.sensors.position.latency == 0.05);
+  CHECK(s.sensors.estimator.attitude_sigma == 0.05);
+}
+
+TEST_CASE("[wind], [aero] and [sensors]: errors name the line and the key") {
+  CHECK(ScenarioError("map = \"m.txt\"\n[wind]\nmean = [1, 2]\n") ==
+        "scenes/x/scenario.toml:3: wind.mean: expected a number or an array of 3 numbers");
+  CHECK(ScenarioError("map = \"m.txt\"\n[wind]\nturbulence = \"karman\"\n") ==
+        "scenes/x/scenario.toml:3: wind.turbulence: expected \"dryden\" or \"none\"");
+  CHECK(ScenarioError("map = \"m.txt\"\n[wind]\nspeed = 3\n") ==
+        "scenes/x/scenario.toml:3: wind.speed: unknown key (expected mean, turbulence, "
+        "intensity, min_airspeed or gusts)");
+  CHECK(ScenarioError("map = \"m.txt\"\n[wind]\n[[wind.gusts]]\nrise = 2\nduration = 1\n")
+            .find("scenes/x/scenario.toml:2: wind: wind.gusts[0].duration: expected at least "
+                  "twice the rise") == 0);
+  CHECK(ScenarioError("map = \"m.txt\"\n[aero]\ndrag = 1\n") ==
+        "scenes/x/scenario.toml:3: aero.drag: expected true or false");
+  CHECK(ScenarioError("map = \"m.txt\"\n[sensors]\nimu = true\n") ==
+        "scenes/x/scenario.toml:2: sensors: sensors.position: the estimator needs both the IMU "
+        "and the position sensor (turn both on, or neither)");
+  CHECK(ScenarioError("map = \"m.txt\"\n[sensors]\nimu = true\n[sensors.position]\n"
+                      "kind = \"sonar\"\n") ==
+        "scenes/x/scenario.toml:5: sensors.position.kind: expected \"mocap\" or \"gps\"");
+  CHECK(ScenarioError("map = \"m.txt\"\n[sensors]\nposition = true\n[sensors.imu]\n"
+                      "rate = 300\n")
+            .find("sensors.imu.rate: 300") != std::string::npos);
+  CHECK(ScenarioError("map = \"m.txt\"\n[sensors]\ncamera = true\n") ==
+        "scenes/x/scenario.toml:3: sensors.camera: unknown key (expected imu, position or "
+        "estimator)");
+}
+
+TEST_CASE("wind brings drag and the drag feed-forward unless the scenario says otherwise") {
+  const TempDir dir;
+  dir.Write("m.json", kMapJson);
+  const auto load = [&](const std::string& text) {
+    return LoadFlightSetupFromText("map = \"m.json\"\n" + text, (dir.path() / "s.toml").string(),
+                                   {});
+  };
+  const FlightSetup still = load("");
+  CHECK_FALSE(still.aero.Enabled());
+  CHECK_FALSE(still.controller.drag_feedforward);
+  const FlightSetup windy = load("[wind]\nmean = [2, 0, 0]\n");
+  CHECK(windy.aero.body_drag);
+  CHECK(windy.aero.rotor_drag);
+  CHECK(windy.controller.drag_feedforward);
+  const FlightSetup no_drag = load("[wind]\nmean = [2, 0, 0]\n[aero]\ndrag = false\n");
+  CHECK_FALSE(no_drag.aero.Enabled());
+  const FlightSetup no_feedforward =
+      load("[aero]\ndrag = true\n[controller]\ndrag_feedforward = false\n");
+  CHECK(no_feedforward.aero.Enabled());
+  CHECK_FALSE(no_feedforward.controller.drag_feedforward);
+  // the command line's --wind and --turbulence
+  SetupOverrides overrides;
+  overrides.wind_mean = Vec3(0, 4, 0);
+  overrides.turbulence = 1.5;
+  const FlightSetup cli =
+      LoadFlightSetupFromText("map = \"m.json\"\n", (dir.path() / "s.toml").string(), overrides);
+  CHECK(cli.wind.mean == Vec3(0, 4, 0));
+  CHECK(cli.wind.turbulence == Turbulence::kDryden);
+  CHECK(cli.wind.intensity == Vec3::Constant(1.5));
+  CHECK(cli.aero.Enabled());
+}
+
 }  // namespace aerobox
