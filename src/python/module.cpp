@@ -236,6 +236,16 @@ class SimulatorCore {
     auto x = matrix(3), v = matrix(3), q = matrix(4), w = matrix(3);
     auto fx = matrix(3), fv = matrix(3), fa = matrix(3), fj = matrix(3), fs = matrix(3);
     auto motors = matrix(4), moment = matrix(3), produced = matrix(4);
+    auto wind = matrix(3), drag = matrix(3);
+    const bool sensed = !s.empty() && s.front().estimate.has_value();
+    const py::ssize_t m = sensed ? n : 0;
+    auto ex = py::array_t<double>({m, py::ssize_t{3}}),
+         ev = py::array_t<double>({m, py::ssize_t{3}});
+    auto eq = py::array_t<double>({m, py::ssize_t{4}}),
+         ew = py::array_t<double>({m, py::ssize_t{3}});
+    auto gyro = py::array_t<double>({m, py::ssize_t{3}}),
+         accel = py::array_t<double>({m, py::ssize_t{3}});
+    py::array_t<double> estimate_error(m), nees(m);
     const auto put = [](py::array_t<double>& a, py::ssize_t i, const double* values, int k) {
       double* row = a.mutable_data(i, 0);
       for (int c = 0; c < k; ++c) row[c] = values[c];
@@ -262,6 +272,20 @@ class SimulatorCore {
       put(produced, i, r.rotor_thrusts.data(), 4);
       error.mutable_at(i) = r.position_error;
       clearance.mutable_at(i) = r.clearance;
+      put(wind, i, r.wind_W.data(), 3);
+      put(drag, i, r.aero_force_W.data(), 3);
+      if (sensed && r.estimate) {
+        const State& e = r.estimate->estimate;
+        put(ex, i, e.p_W.data(), 3);
+        put(ev, i, e.v_W.data(), 3);
+        const double eq4[4] = {e.q_WB.x(), e.q_WB.y(), e.q_WB.z(), e.q_WB.w()};
+        put(eq, i, eq4, 4);
+        put(ew, i, e.w_B.data(), 3);
+        put(gyro, i, r.estimate->imu.gyro_B.data(), 3);
+        put(accel, i, r.estimate->imu.accel_B.data(), 3);
+        estimate_error.mutable_at(i) = r.estimate->error.head<3>().norm();
+        nees.mutable_at(i) = r.estimate->nees;
+      }
     }
     py::dict state, control, flat, result;
     state["x"] = x;
@@ -301,6 +325,24 @@ class SimulatorCore {
     result["control_rate"] = f.control_rate;
     result["wall_time"] = record.wall_time;
     result["seed"] = static_cast<long long>(seed_);
+    result["wind"] = wind;
+    result["drag"] = drag;
+    result["max_wind"] = f.max_wind;
+    if (sensed) {
+      py::dict estimate, imu;
+      estimate["x"] = ex;
+      estimate["v"] = ev;
+      estimate["q"] = eq;
+      estimate["w"] = ew;
+      imu["gyro"] = gyro;
+      imu["accel"] = accel;
+      result["estimate"] = estimate;
+      result["imu"] = imu;
+      result["estimate_error"] = estimate_error;
+      result["nees"] = nees;
+      result["estimate_rms"] = f.estimate_rms_error;
+      result["estimate_max"] = f.estimate_max_error;
+    }
     return result;
   }
 

@@ -192,7 +192,10 @@ TEST_CASE("fly checks every option before any work: nothing is planned or writte
       {{"--size", "640x480x"}, "--size: expected WxH"},
       {{"--fps", "0"}, "--fps:"},
       {{"--speed", "-1"}, "--speed:"},
-      {{"--quality", "ugly"}, "--quality: expected fast or pretty"}};
+      {{"--quality", "ugly"}, "--quality: expected fast or pretty"},
+      {{"--wind", "3,0"}, "--wind: expected three numbers X,Y,Z in m/s"},
+      {{"--wind", "60,0,0"}, "--wind: expected at most 50 m/s"},
+      {{"--turbulence", "-2"}, "--turbulence: expected 0 to 20 m/s"}};
   for (const auto& [extra, message] : cases) {
     std::vector<std::string> args = {"fly",   room,      "--start", "1,1,0", "--goal",
                                      "5,1,1", "--quiet", "--out",   out};
@@ -284,6 +287,32 @@ TEST_CASE("fly: --max-speed, --max-accel, --telemetry-rate, --playback, scenario
         std::string::npos);
   CHECK(Aerobox({"fly", slow, "--no-video", "--quiet", "--out", out, "--max-speed", "20"})
             .err.find("--max-speed: expected 0.01 to 8 m/s") != std::string::npos);
+}
+
+TEST_CASE("fly --wind --turbulence: the wind, its drag and their columns") {
+  const TempDir dir;
+  const std::string room = dir.Write("room.txt", "boundary 0 0 0 6 6 2\nblock 2.5 0 0 3 4.5 2\n");
+  const std::string out = (dir.path() / "out").string();
+  const Run run = Aerobox({"fly", room, "--start", "1,1,1", "--goal", "5,1,1", "--quiet",
+                           "--no-video", "--out", out, "--wind", "1.5,0,0", "--turbulence", "0.3"});
+  CAPTURE(run.err);
+  REQUIRE(run.code == kExitReachedGoal);
+  const nlohmann::json summary = testing::ReadSummary(fs::path(out) / "summary.json");
+  CHECK(summary["wind"]["mean_mps"][0] == 1.5);
+  CHECK(summary["wind"]["turbulence"] == "dryden");
+  CHECK(summary["aero"]["body_drag"] == true);
+  CHECK(summary["sensors"]["imu"] == false);
+  CHECK(testing::SummaryNumber(summary, "max_wind_mps") > 1.0);
+  const std::string telemetry = testing::ReadFile(fs::path(out) / "telemetry.csv");
+  const std::string header = telemetry.substr(0, telemetry.find('\n'));
+  CHECK(header.find(",wind_x,wind_y,wind_z,drag_x,drag_y,drag_z") != std::string::npos);
+  CHECK(header.find("est_x") == std::string::npos);  // no sensors: no estimate columns
+  // still air: the ideal flight's columns only
+  const Run still = Aerobox(
+      {"fly", room, "--start", "1,1,1", "--goal", "5,1,1", "--quiet", "--no-video", "--out", out});
+  REQUIRE(still.code == kExitReachedGoal);
+  const std::string ideal = testing::ReadFile(fs::path(out) / "telemetry.csv");
+  CHECK(ideal.substr(0, ideal.find('\n')).find("wind_x") == std::string::npos);
 }
 
 TEST_CASE("model writes the vehicle's MJCF") {

@@ -160,6 +160,53 @@ class WindowFlights(unittest.TestCase):
             self.assertFalse(os.path.exists(os.path.join(folder, "bad", "summary.json")))
 
 
+class WindAndSensors(unittest.TestCase):
+    """The scenario's [wind], [aero] and [sensors] as keywords: a Python controller flies the
+    circle in a breeze on the estimate, and the result carries the wind and the estimate."""
+
+    def test_a_python_controller_flies_on_the_estimate_in_wind(self):
+        with tempfile.TemporaryDirectory() as folder:
+            keys = dict(
+                start=[1.0, 0.0, 1.5],
+                wind={"mean": [1.5, 0.0, 0.0], "turbulence": "dryden", "intensity": 0.3,
+                      "gusts": [{"start": 2.0, "peak": 1.0, "direction": [0, 1, 0]}]},
+                sensors={"imu": True, "position": {"kind": "mocap", "latency": 0.02}})
+            sim = aerobox.Simulator(empty_map(folder), **keys)
+            controller = SE3Control(sim.quad_params)
+            result = sim.run(controller, Circle(), control_rate=500)
+            self.assertEqual(result["status"], "reached goal")
+            n = len(result["time"])
+            self.assertEqual(result["wind"].shape, (n, 3))
+            self.assertGreater(result["max_wind"], 1.0)
+            self.assertGreater(np.abs(result["drag"][:, 0]).max(), 0.0)  # the wind brought drag
+            self.assertEqual(result["estimate"]["x"].shape, (n, 3))
+            self.assertEqual(result["imu"]["accel"].shape, (n, 3))
+            self.assertLess(result["estimate_rms"], 0.005)
+            # the test's SE3 controller has no integral term and knows nothing of drag: the
+            # breeze leaves it a steady offset downwind (about 11 cm)
+            self.assertLess(result["tracking_rms"], 0.2)
+            offset = result["state"]["x"] - result["flat"]["x"]
+            self.assertGreater(offset[n // 2:, 0].mean(), 0.05)
+            # the controller saw the estimate, not the truth: they differ a little
+            self.assertGreater(np.abs(result["estimate"]["x"] - result["state"]["x"]).max(), 0)
+            # the same seed repeats, another seed does not
+            again = sim.run(controller, Circle(), control_rate=500)
+            np.testing.assert_array_equal(result["wind"], again["wind"])
+            sim.reset(seed=2)
+            other = sim.run(controller, Circle(), control_rate=500)
+            self.assertFalse(np.array_equal(result["wind"], other["wind"]))
+            out = aerobox.write_outputs(result, os.path.join(folder, "run"), video=False)
+            with open(os.path.join(out, "telemetry.csv")) as file:
+                header = file.readline()
+            for column in ("wind_x", "drag_x", "est_x", "est_nees", "imu_gx", "meas_x"):
+                self.assertIn(column, header)
+
+    def test_bad_wind_keys_name_the_key(self):
+        with tempfile.TemporaryDirectory() as folder:
+            with self.assertRaisesRegex(ValueError, "wind.turbulence"):
+                aerobox.Simulator(empty_map(folder), wind={"turbulence": "karman"})
+
+
 class BadCommands(unittest.TestCase):
     @classmethod
     def setUpClass(cls):

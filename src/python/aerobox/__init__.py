@@ -66,16 +66,37 @@ def _toml_value(value):
 
 
 def _toml(document):
-    """A scenario dict as TOML text: plain keys first, then one table per dict."""
+    """A scenario dict as TOML text: plain keys first, then one table per dict (nested dicts
+    become [a.b] tables, lists of dicts [[a.b]] arrays of tables)."""
     lines = []
+
+    def table(name, values):
+        plain = {k: v for k, v in values.items() if not _is_table(v)}
+        lines.append(f"[{name}]")
+        lines.extend(f"{k} = {_toml_value(v)}" for k, v in plain.items())
+        for k, v in values.items():
+            if isinstance(v, dict):
+                table(f"{name}.{k}", v)
+            elif _is_table(v):
+                for item in v:
+                    lines.append(f"[[{name}.{k}]]")
+                    lines.extend(f"{ik} = {_toml_value(iv)}" for ik, iv in item.items())
+
     for key, value in document.items():
-        if not isinstance(value, dict):
+        if not _is_table(value):
             lines.append(f"{key} = {_toml_value(value)}")
     for key, value in document.items():
-        if isinstance(value, dict):
-            lines.append(f"[{key}]")
-            lines.extend(f"{k} = {_toml_value(v)}" for k, v in value.items())
+        if _is_table(value):
+            table(key, value)
     return "\n".join(lines) + "\n"
+
+
+def _is_table(value):
+    """A dict, or a non-empty list of dicts (an array of tables)."""
+    if isinstance(value, dict):
+        return True
+    return (isinstance(value, (list, tuple)) and len(value) > 0
+            and all(isinstance(v, dict) for v in value))
 
 
 class Map:
@@ -238,7 +259,11 @@ class Simulator:
     start: [m]; the vehicle rests there (on the floor when the start is at floor level,
         hovering otherwise). Default: the map's or scenario's start.
     scenario_keys: goal, and tables: controller={...}, flight={...} (settle_time,
-        goal_tolerance, ...), planner and trajectory (for plans made from this simulator).
+        goal_tolerance, ...), planner and trajectory (for plans made from this simulator),
+        wind={"mean": [3, 0, 0], "turbulence": "dryden", "intensity": 1.0, "gusts": [{...}]},
+        aero={"drag": True}, sensors={"imu": True, "position": True} (or a dict of keys for
+        either): the scenario's [wind], [aero] and [sensors] (README: Wind, drag and
+        sensors). They act in run(); step() is the still, ideal world.
 
     Attributes: quad_params (the vehicle as RotorPy's dict, rotor order as the commands use
     it), timestep [s], time [s], state (RotorPy's state dict), map (aerobox.Map).
@@ -287,7 +312,7 @@ class Simulator:
 
     def reset(self, seed=None, state=None):
         """Back to the start at t = 0 (or to `state`, RotorPy's dict: x [m], v [m/s],
-        q [i, j, k, w], w [rad/s]); `seed` seeds the disturbances (none modelled yet: the same
+        q [i, j, k, w], w [rad/s]); `seed` seeds the turbulence and the sensors' noise (the same
         seed gives the same flight). Returns the state."""
         if seed is not None:
             self._seed = seed
@@ -336,7 +361,10 @@ class Simulator:
         "fly-away", "non-finite state", "completed" for a trajectory without a duration run to
         t_final); reached_goal, collisions, collision_with, min_clearance [m], tracking_rms,
         tracking_max [m], flight_time [s], distance [m], top_speed [m/s], peak_rotor_fraction,
-        rotor_saturated_time [s], wall_time [s], seed. One row per control step.
+        rotor_saturated_time [s], wall_time [s], seed; wind (N, 3) [m/s] at the vehicle, drag
+        (N, 3) [N], max_wind [m/s]. With sensors on, the controller flies on the estimate:
+        estimate {x, v, q, w}, imu {gyro [rad/s], accel [m/s^2]} (N, 3|4), estimate_error (N,)
+        [m], nees (N,), estimate_rms, estimate_max [m]. One row per control step.
 
         An exception in controller.update or trajectory.update ends the run with that exception
         (its notes name the time); a command with a missing key, a wrong shape or a non-finite
