@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 
 #include "common/error.h"
@@ -17,10 +18,12 @@ namespace {
 constexpr double kTreeIntro = 3.0;        // [s] of video in which the RRT* tree grows
 constexpr size_t kTelemetryBlock = 1000;  // rows (4 s of flight at 250 Hz) appended at once
 
-std::string Hud(double t, const State& state, double floor, const char* status) {
+std::string Hud(double t, const State& state, double floor, const char* status,
+                const std::optional<Vec3>& wind = std::nullopt) {
   std::ostringstream text;
   text << std::fixed << std::setprecision(1) << "t " << t << " s  " << state.v_W.norm() << " m/s  "
        << state.p_W.z() - floor << " m above the floor  " << status;
+  if (wind) text << "\nwind " << wind->norm() << " m/s (cyan arrow)";
   return text.str();
 }
 
@@ -155,7 +158,12 @@ void RenderOutputs::OnSample(const TelemetrySample& s) {
   const bool png_due = options_.frames_every > 0 && s.t + 1e-9 >= next_png_;
   const bool video_due = video_ && s.t + 1e-9 >= next_frame_;
   if (!png_due && !video_due) return;
-  Frame(Hud(s.t, s.state, setup_.map.bounds.min.z(), "flying"), options_.camera, overlay_);
+  if (setup_.wind.Enabled()) {
+    overlay_.wind_W = s.wind_W;
+    overlay_.wind_origin = s.state.p_W + Vec3(0, 0, 0.15);  // above the vehicle
+  }
+  Frame(Hud(s.t, s.state, setup_.map.bounds.min.z(), "flying", overlay_.wind_W), options_.camera,
+        overlay_);
   if (png_due) {
     char name[32];
     std::snprintf(name, sizeof(name), "frame_%06d.png", png_frames_++);

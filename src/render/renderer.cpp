@@ -111,6 +111,19 @@ struct Renderer::Impl {
       AddLine(overlay.trajectory[kept[i - 1]], overlay.trajectory[kept[i]], rgba, 3.0);
     }
     AddPolyline(overlay.trail, kTrail, 2.0);
+    if (overlay.wind_W && overlay.wind_W->norm() > 0.05) {
+      static const float kWind[4] = {0.1f, 0.8f, 0.9f, 0.9f};
+      constexpr double kMetresPerSpeed = 0.3;  // [m per m/s]
+      if (scene.ngeom < scene.maxgeom) {
+        const Vec3 a = overlay.wind_origin;
+        const Vec3 b = a + kMetresPerSpeed * *overlay.wind_W;
+        mjvGeom* geom = scene.geoms + scene.ngeom;
+        mjv_initGeom(geom, mjGEOM_NONE, nullptr, nullptr, nullptr, kWind);
+        mjv_makeConnector(geom, mjGEOM_ARROW, 0.02, a.x(), a.y(), a.z(), b.x(), b.y(), b.z());
+        geom->category = mjCAT_DECOR;
+        ++scene.ngeom;
+      }
+    }
     if (overlay.start) AddSphere(*overlay.start, scale, kStart);
     if (overlay.goal) AddSphere(*overlay.goal, scale, kGoal);
   }

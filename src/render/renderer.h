@@ -64,6 +64,10 @@ struct Overlay {
   bool top_inset = false;
   // bottom-left text, lines separated by '\n' (what the lines' colours mean)
   std::string legend;
+  // the wind [m/s] as a cyan arrow from `wind_origin` [m], 0.3 m long per m/s (none when
+  // empty)
+  std::optional<Vec3> wind_W;
+  Vec3 wind_origin = Vec3::Zero();
 };
 
 class Renderer {

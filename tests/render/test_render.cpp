@@ -239,4 +239,27 @@ TEST_CASE("the overview's top-down inset fills the top-right corner and only tha
   CHECK(elsewhere == 0);
 }
 
+TEST_CASE("the wind shows as a cyan arrow at the vehicle") {
+  Simulation sim = SmallScene(Vec3(1, 1, 1));
+  Renderer renderer(&sim, RenderSettings(480, 360, Quality::kFast));
+  const auto cyan = [](const Image& image) {
+    int count = 0;
+    for (int y = 0; y < image.height; ++y) {
+      for (int x = 0; x < image.width; ++x) {
+        const std::uint8_t* p = image.Pixel(x, y);
+        count += p[0] < 90 && p[1] > 150 && p[2] > 170;
+      }
+    }
+    return count;
+  };
+  Image still, windy;
+  Overlay overlay;
+  renderer.Render(CameraSpec{CameraKind::kOverview, ""}, overlay, &still);
+  overlay.wind_W = Vec3(4, 0, 0);
+  overlay.wind_origin = Vec3(1, 1, 1.15);
+  renderer.Render(CameraSpec{CameraKind::kOverview, ""}, overlay, &windy);
+  CHECK(cyan(still) == 0);
+  CHECK(cyan(windy) > 40);  // a 1.2 m arrow seen from the overview camera
+}
+
 }  // namespace aerobox
