@@ -137,6 +137,31 @@ int RunCheck(const FlightSetup& setup, std::ostream& out) {
                 << FormatNumber(f.goal_speed) << " m/s, " << FormatNumber(f.settle_time)
                 << " s after the trajectory; fly-away at " << FormatNumber(f.flyaway_distance)
                 << " m; yaw " << (f.face_travel ? "along the travel" : "held") << "\n";
+  const WindParams& w = setup.wind;
+  row("air");
+  if (!w.Enabled() && !setup.aero.Enabled()) {
+    out << "still, no drag\n";
+  } else {
+    out << "wind " << FormatVector(w.mean) << " m/s";
+    if (w.turbulence == Turbulence::kDryden) {
+      out << ", Dryden turbulence " << FormatVector(w.intensity) << " m/s";
+    }
+    if (!w.gusts.empty()) out << ", " << w.gusts.size() << " gust(s)";
+    out << "; drag: body " << (setup.aero.body_drag ? "on" : "off") << ", rotor "
+        << (setup.aero.rotor_drag ? "on" : "off")
+        << (c.drag_feedforward ? ", fed forward by the controller" : "") << "\n";
+  }
+  const SensorParams& sensors = setup.sensors;
+  row("sensors");
+  if (!sensors.Enabled()) {
+    out << "none: the controller reads the true state\n";
+  } else {
+    const PositionSensorParams& pos = sensors.position;
+    out << "IMU at " << FormatNumber(sensors.imu.rate) << " Hz, "
+        << (pos.kind == PositionSensorKind::kGps ? "GPS" : "motion capture") << " at "
+        << FormatNumber(pos.rate) << " Hz (noise " << FormatVector(pos.noise) << " m, latency "
+        << FormatNumber(pos.latency) << " s); the controller flies on the estimator's state\n";
+  }
   const PlanningSettings& p = setup.planning;
   row("planner") << PlannerKindFor(setup) << ", clearance " << FormatNumber(p.clearance)
                  << " m; trajectory " << p.trajectory_method << ", "

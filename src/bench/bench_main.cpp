@@ -14,6 +14,7 @@
 #include "bench/planner_comparison.h"
 #include "bench/python_benchmark.h"
 #include "bench/render_benchmark.h"
+#include "bench/robustness.h"
 #include "bench/solver_comparison.h"
 #include "common/error.h"
 #include "geometry/collision_world.h"
@@ -74,8 +75,8 @@ void SpeedTable(const std::string& scenes, const std::string& maps, std::ostream
 }
 
 int RunBench(const std::string& sections, const std::string& scenes, const std::string& maps,
-             const std::string& city, int seeds, double seconds, std::ostream& out,
-             std::ostream& err) {
+             const std::string& city, int seeds, double seconds, const std::string& robustness_csv,
+             std::ostream& out, std::ostream& err) {
   const auto wanted = [&sections](const char* name) {
     return sections == "all" ||
            ("," + sections + ",").find(std::string(",") + name + ",") != std::string::npos;
@@ -110,6 +111,20 @@ int RunBench(const std::string& sections, const std::string& scenes, const std::
     const std::string window =
         (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
     RunPythonBenchmark(window, out);
+    out << "\n";
+  }
+  if (wanted("robustness")) {
+    RobustnessParams params;
+    std::istringstream list(maps);
+    std::string map;
+    while (std::getline(list, map, ',')) {
+      params.scenarios.push_back((std::filesystem::path(scenes) / map / "scenario.toml").string());
+    }
+    params.seeds = seeds;
+    params.csv = robustness_csv;
+    out << "## Robustness: wind, turbulence, drag and sensors, " << seeds
+        << " seeds per map and wind\n\n";
+    RobustnessTable(params, out, err);
     out << "\n";
   }
   if (wanted("city")) {
@@ -153,14 +168,18 @@ int main(int argc, char** argv) {
   int bench_seeds = 20;
   double bench_seconds = 1.0;
   app.add_option("--sections", bench_sections,
-                 "all, or some of: trajectory,flight,render,speed,python,city,planning")
+                 "all, or some of: trajectory,flight,render,speed,python,robustness,city,planning")
       ->capture_default_str();
   app.add_option("--scenes", bench_scenes, "folder with the scenes")->capture_default_str();
   app.add_option("--maps", bench_maps, "comma-separated scene names")->capture_default_str();
   std::string bench_city;
   app.add_option("--city", bench_city, "the city map for the city section (FCND CSV)")
       ->check(CLI::ExistingFile);
-  app.add_option("--seeds", bench_seeds, "runs per planner and map")
+  std::string robustness_csv;
+  app.add_option("--robustness-csv", robustness_csv,
+                 "robustness: also write one row per flight to this CSV (tools/plot_robustness.py "
+                 "plots it)");
+  app.add_option("--seeds", bench_seeds, "runs per planner and map (planning, robustness)")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
   app.add_option("--seconds", bench_seconds, "time budget of each run [s]")
@@ -173,8 +192,16 @@ int main(int argc, char** argv) {
     return app.exit(error) == 0 ? 0 : 2;
   }
   try {
+    if (!robustness_csv.empty()) {
+      // checked before any work: its folder exists
+      const std::filesystem::path folder = std::filesystem::absolute(robustness_csv).parent_path();
+      if (!std::filesystem::is_directory(folder)) {
+        throw aerobox::InputError({robustness_csv, 0}, "--robustness-csv",
+                                  "its folder does not exist");
+      }
+    }
     return aerobox::RunBench(bench_sections, bench_scenes, bench_maps, bench_city, bench_seeds,
-                             bench_seconds, std::cout, std::cerr);
+                             bench_seconds, robustness_csv, std::cout, std::cerr);
   } catch (const aerobox::InputError& error) {
     std::cerr << "aerobox bench: error: " << error.what() << "\n";
     return 2;

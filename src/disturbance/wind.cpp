@@ -65,6 +65,13 @@ Vec3 DrydenScaleLengths(double height) {
   return Vec3(horizontal, horizontal, h) * kFeet;
 }
 
+Vec3 DrydenIntensities(double wind_20ft, double height) {
+  const double h = std::clamp(height, 1.0, 1000 * kFeet) / kFeet;  // [ft]
+  const double w = 0.1 * std::abs(wind_20ft);
+  const double horizontal = w / std::pow(0.177 + 0.000823 * h, 0.4);
+  return Vec3(horizontal, horizontal, w);
+}
+
 DrydenTurbulence::DrydenTurbulence(const Vec3& intensity, std::uint64_t seed)
     : intensity_(intensity), rng_(seed) {
   // the stationary distribution: unit variance, uncorrelated (the normalisation's point)

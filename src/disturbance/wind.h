@@ -49,6 +49,11 @@ struct WindParams {
 // 0.000823 h)^1.2, with h in feet inside.
 Vec3 DrydenScaleLengths(double height);
 
+// MIL-F-8785C's low-altitude turbulence intensities [m/s] (u, v, w) for the wind speed
+// `wind_20ft` [m/s] at 20 ft (6.1 m) and a height [m] (clamped as above): sigma_w = 0.1 W20,
+// sigma_u = sigma_v = sigma_w / (0.177 + 0.000823 h)^0.4, h in feet.
+Vec3 DrydenIntensities(double wind_20ft, double height);
+
 // Dryden turbulence: u (along the wind) with the first-order spectrum, v and w with the
 // second-order ones, each a linear filter driven by white noise and advanced with its exact
 // discretisation over each step (the transition matrix and the covariance it adds), so the

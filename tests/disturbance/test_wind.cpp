@@ -51,6 +51,11 @@ TEST_CASE("the scale lengths follow MIL-F-8785C at low altitude") {
   CHECK(l.y() == doctest::Approx(l.x()));
   CHECK(l.z() == doctest::Approx(10.0));
   CHECK(DrydenScaleLengths(0.0).z() == doctest::Approx(1.0));  // clamped to the model's range
+  // intensities: sigma_w = 0.1 W20, the horizontal ones larger near the ground
+  const Vec3 sigma = DrydenIntensities(10.0, 10.0);
+  CHECK(sigma.z() == doctest::Approx(1.0));
+  CHECK(sigma.x() == doctest::Approx(1.0 / std::pow(0.177 + 0.000823 * h, 0.4)));
+  CHECK(sigma.x() > 1.5);
 }
 
 TEST_CASE("Dryden turbulence has the intensity and the correlation length asked for") {

@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# aerobox bench --sections robustness on one map and one seed: a table row per wind, a CSV row
+# per flight, and tools/plot_robustness.py draws the CSV; bad input exits 2 and writes nothing.
+# Usage: robustness_bench_test.sh AEROBOX_BENCH_BINARY SOURCE_DIR
+set -euo pipefail
+bench=$1
+top=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+"$bench" --sections robustness --scenes "$top/scenes" --maps empty --seeds 1 \
+  --robustness-csv "$work/runs.csv" > "$work/table.md" 2> /dev/null
+rows=$(grep -c '^| empty |' "$work/table.md")
+[ "$rows" -eq 3 ] || { cat "$work/table.md"; echo "FAIL: $rows table rows, expected 3"; exit 1; }
+flights=$(($(wc -l < "$work/runs.csv") - 1))
+[ "$flights" -eq 3 ] || { echo "FAIL: $flights CSV rows, expected 3"; exit 1; }
+grep -q '^empty,0,1,reached goal,' "$work/runs.csv" || { cat "$work/runs.csv"; exit 1; }
+
+/usr/bin/python3 "$top/tools/plot_robustness.py" "$work/runs.csv" "$work/plot.png" > /dev/null
+[ "$(head -c 8 "$work/plot.png" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] ||
+  { echo "FAIL: plot.png is not a PNG"; exit 1; }
+
+set +e
+"$bench" --sections robustness --maps empty --robustness-csv "$work/no/such/folder.csv" \
+  > "$work/out.txt" 2> "$work/err.txt"
+code=$?
+printf 'a,b\n1,2\n' > "$work/bad.csv"
+/usr/bin/python3 "$top/tools/plot_robustness.py" "$work/bad.csv" "$work/bad.png" 2> "$work/err2.txt"
+code2=$?
+set -e
+[ "$code" -eq 2 ] || { echo "FAIL: a CSV in a missing folder exited $code"; exit 1; }
+grep -q "robustness-csv" "$work/err.txt" || { cat "$work/err.txt"; exit 1; }
+[ ! -s "$work/out.txt" ] || { echo "FAIL: work was done before the option was checked"; exit 1; }
+[ "$code2" -eq 2 ] || { echo "FAIL: bad CSV exited $code2"; exit 1; }
+[ ! -e "$work/bad.png" ] || { echo "FAIL: a PNG was written for bad input"; exit 1; }
+echo "robustness bench: table, CSV and plot; bad input exits 2"

@@ -1,0 +1,75 @@
+#!/usr/bin/python3
+"""Plots the robustness benchmark's flights (aerobox bench --sections robustness
+--robustness-csv FILE): tracking RMS against the mean wind per map, each flight a dot (a cross
+when it failed), and the share that reached the goal, into one PNG.
+
+Usage: tools/plot_robustness.py robustness.csv [robustness.png]
+(default output: robustness.png beside the CSV). Needs Debian's python3-pandas and
+python3-matplotlib (tools/setup.sh installs them).
+"""
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")  # headless
+import matplotlib.pyplot as plt  # noqa: E402
+import pandas as pd  # noqa: E402
+
+
+def main(argv):
+    if len(argv) not in (2, 3) or argv[1] in ("-h", "--help"):
+        print(__doc__.strip(), file=sys.stderr)
+        return 2
+    source = argv[1]
+    target = argv[2] if len(argv) == 3 else os.path.join(os.path.dirname(source),
+                                                         "robustness.png")
+    try:
+        data = pd.read_csv(source)
+    except (OSError, pd.errors.ParserError, pd.errors.EmptyDataError) as error:
+        print(f"plot_robustness: {source}: {error}", file=sys.stderr)
+        return 2
+    needed = ["map", "wind_mps", "seed", "status", "tracking_rms_m"]
+    missing = [c for c in needed if c not in data.columns]
+    if missing or data.empty:
+        print(f"plot_robustness: {source}: not a robustness file "
+              f"(missing {', '.join(missing) or 'rows'})", file=sys.stderr)
+        return 2
+
+    figure, (rms_axis, rate_axis) = plt.subplots(1, 2, figsize=(12, 4.5))
+    maps = list(dict.fromkeys(data["map"]))
+    winds = sorted(set(data["wind_mps"]))
+    width = 0.8 / max(1, len(maps))
+    for i, name in enumerate(maps):
+        rows = data[data["map"] == name]
+        offset = (i - (len(maps) - 1) / 2) * width * 0.6
+        ok = rows[rows["status"] == "reached goal"]
+        bad = rows[rows["status"] != "reached goal"]
+        colour = f"C{i}"
+        rms_axis.scatter(ok["wind_mps"] + offset, ok["tracking_rms_m"] * 100, s=12,
+                         color=colour, label=name)
+        rms_axis.scatter(bad["wind_mps"] + offset, bad["tracking_rms_m"] * 100, s=40,
+                         color=colour, marker="x")
+        rate = [100 * (rows[rows["wind_mps"] == w]["status"] == "reached goal").mean()
+                for w in winds]
+        rate_axis.bar([w + offset for w in winds], rate, width=width * 0.6, color=colour,
+                      label=name)
+    rms_axis.set_xlabel("mean wind [m/s] (with Dryden turbulence)")
+    rms_axis.set_ylabel("tracking RMS [cm]")
+    rms_axis.set_title("tracking, each flight (x: failed)")
+    rms_axis.legend()
+    rms_axis.grid(alpha=0.3)
+    rate_axis.set_xlabel("mean wind [m/s]")
+    rate_axis.set_ylabel("reached the goal [%]")
+    rate_axis.set_ylim(0, 105)
+    rate_axis.set_title("success")
+    rate_axis.grid(alpha=0.3, axis="y")
+    figure.suptitle("aerobox: flights in wind, with drag, an IMU and motion capture")
+    figure.tight_layout()
+    figure.savefig(target, dpi=100)
+    print(target)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
