@@ -327,16 +327,12 @@ TrajectoryResult GenerateTrajectory(const std::vector<Vec3>& path, const Traject
 
       MinSnapProblem problem;
       problem.waypoints = waypoints;
-      const auto dbg1 = std::chrono::steady_clock::now();
       problem.durations =
           min_time
               ? MinTimeDurations(waypoints, limits, params)
               : RefineDurations(waypoints,
                                 TrapezoidDurations(waypoints, params.max_speed, params.max_accel),
                                 params.time_refinement_steps);
-      if (getenv("DBG"))
-        fprintf(stderr, "alloc %.3f s\n",
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - dbg1).count());
       problem.samples_per_segment = params.samples_per_segment;
       result.corridors.assign(problem.durations.size(), std::nullopt);
       if (params.use_corridors) {
@@ -358,12 +354,7 @@ TrajectoryResult GenerateTrajectory(const std::vector<Vec3>& path, const Traject
       PiecewiseTrajectory best;
       for (int repair = 0;; ++repair) {
         if (params.use_corridors) {
-          const auto dbg0 = std::chrono::steady_clock::now();
           const MinSnapSolution solution = SolveMinSnapIpopt(problem, params.ipopt);
-          if (getenv("DBG"))
-            fprintf(stderr, "ipopt %.3f s %s\n",
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - dbg0).count(),
-                    solution.message.c_str());
           result.stats.solver_message = solution.message;
           if (solution.status != SolveStatus::kSolved) {
             result.status = solution.status == SolveStatus::kInfeasible
