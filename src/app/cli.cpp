@@ -331,13 +331,18 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
 
   std::string input;
   std::string start_text;
-  std::string goal_text;
+  std::vector<std::string> goal_texts;
   std::string output;
   const auto add_input = [&](CLI::App* command) {
     command->add_option("input", input, "scenario.toml or map file (.txt, .json, .csv)")
         ->required();
     command->add_option("--start", start_text, "start X,Y,Z [m], overriding the scenario's");
-    command->add_option("--goal", goal_text, "goal X,Y,Z [m], overriding the scenario's");
+    command
+        ->add_option("--goal", goal_texts,
+                     "goal X,Y,Z [m], overriding the scenario's; several: a mission through "
+                     "each in order")
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   };
 
   CLI::App* scene = app.add_subcommand("scene", "write the MuJoCo MJCF scene of a map");
@@ -471,7 +476,12 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     }
     SetupOverrides overrides;
     overrides.start = ParsePointOption(start_text, "--start");
-    overrides.goal = ParsePointOption(goal_text, "--goal");
+    for (size_t i = 0; i < goal_texts.size(); ++i) {
+      const std::optional<Vec3> goal = ParsePointOption(goal_texts[i], "--goal");
+      if (!goal) continue;
+      if (i + 1 < goal_texts.size()) overrides.via.push_back(*goal);
+      overrides.goal = goal;
+    }
     if (seed_given) overrides.seed = seed;
     if (!wind_text.empty()) {
       overrides.wind_mean = ParsePointOption(wind_text, "--wind", "m/s");

@@ -165,6 +165,24 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
         << result.flight_wall_time << " s wall)";
   if (!flight.obstacle.empty()) table << ", hit " << flight.obstacle;
   if (!flight.message.empty()) table << ": " << flight.message;
+  if (!plan.via.empty()) {
+    // a mission: each goal and when it was reached
+    const size_t goals = plan.via.size() + 1;
+    const size_t reached =
+        flight.goal_times.size() + (flight.status == FlightStatus::kReachedGoal ? 1 : 0);
+    table << "\n  goals       " << reached << " of " << goals << " reached";
+    for (size_t i = 0; i < goals; ++i) {
+      table << (i == 0 ? ": " : ", ") << i + 1 << " ";
+      if (i < flight.goal_times.size()) {
+        table << "at " << flight.goal_times[i] << " s";
+      } else if (i + 1 == goals && flight.status == FlightStatus::kReachedGoal) {
+        table << "at " << flight.time << " s";
+      } else {
+        table << "not reached";
+      }
+    }
+    if (setup.stop_at_goals) table << " (stopping at each)";
+  }
   // tracking errors of a millimetre or less: three significant digits, not "0.000 m"
   const auto metres = [](double value) {
     std::ostringstream text;

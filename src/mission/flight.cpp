@@ -40,6 +40,8 @@ const char* ToString(FlightStatus status) {
       return "fly-away";
     case FlightStatus::kSimulationWarning:
       return "simulation warning";
+    case FlightStatus::kMissedGoal:
+      return "missed a goal";
   }
   return "?";
 }
@@ -199,6 +201,14 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
       result.status = FlightStatus::kNonFinite;
       break;
     }
+    // a mission's goals, in order
+    if (result.goal_times.size() < loop.goals.size()) {
+      const Vec3& next = loop.goals[result.goal_times.size()];
+      if ((state.p_W - next).norm() < params.goal_tolerance &&
+          (!loop.stop_at_goals || state.v_W.norm() < params.goal_speed)) {
+        result.goal_times.push_back(t);
+      }
+    }
     const double error = (state.p_W - setpoint.p_W).norm();
     if (control_step) {
       squared_error_sum += error * error;
@@ -215,8 +225,8 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
       if (loop.telemetry) {
         controller.Report(&report);
         loop.telemetry(
-            {t, state, setpoint, command, inner_out, sim->RotorThrusts(), error, c, report, wind_W,
-             aero.force_W,
+            {t, state, setpoint, command, inner_out, sim->RotorThrusts(), error, c, report,
+             static_cast<int>(result.goal_times.size()), wind_W, aero.force_W,
              sensing ? std::optional<EstimateSample>(sensing->Sample(state)) : std::nullopt});
       }
     }
@@ -226,7 +236,8 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
     }
     if (!taking_off && tr >= duration && (state.p_W - goal).norm() < params.goal_tolerance &&
         state.v_W.norm() < params.goal_speed) {
-      result.status = FlightStatus::kReachedGoal;
+      result.status = result.goal_times.size() == loop.goals.size() ? FlightStatus::kReachedGoal
+                                                                    : FlightStatus::kMissedGoal;
       break;
     }
     if (t >= end_time + takeoff_time) {

@@ -39,6 +39,7 @@ enum class FlightStatus {
   kNonFinite,
   kFlyAway,
   kSimulationWarning,  // MuJoCo warned (an engine reset, a full contact buffer): not trusted
+  kMissedGoal,         // at the last goal, but a goal before it was never reached
 };
 const char* ToString(FlightStatus status);
 
@@ -53,6 +54,7 @@ struct TelemetrySample {
   double position_error = 0.0;        // |p - p_des| [m]
   double clearance = 0.0;             // to the nearest obstacle [m]
   std::vector<double> report;         // the controller's own columns (ReportColumns)
+  int goal_index = 0;                 // a mission's goals reached so far (the next one's index)
   Vec3 wind_W = Vec3::Zero();         // the wind at the vehicle [m/s]
   Vec3 aero_force_W = Vec3::Zero();   // drag on the vehicle [N]
   // With sensors on: the estimate the controller flew on, its error and the readings; empty
@@ -80,6 +82,8 @@ struct FlightResult {
   double estimate_rms_error = 0.0;
   double estimate_max_error = 0.0;
   double max_wind = 0.0;  // [m/s] the strongest wind met
+  // a mission's goals before the last: when each was reached [s], in order (as many as were)
+  std::vector<double> goal_times;
   double AverageSpeed() const { return time > 0 ? distance / time : 0.0; }  // [m/s]
 };
 
@@ -115,7 +119,12 @@ struct FlightLoop {
   AeroParams aero;
   SensorParams sensors;
   std::uint64_t seed = 1;  // the turbulence's and the sensors' (common/seed.h streams)
-  double ground_z = 0.0;   // [m] the floor's height, for the turbulence's scale lengths
+  // A mission's goals before the reference's end, in order: each is reached within the goal
+  // tolerance (and below the goal speed when the mission stops at its goals); the flight
+  // succeeds only when all were, in order.
+  std::vector<Vec3> goals;
+  bool stop_at_goals = false;
+  double ground_z = 0.0;  // [m] the floor's height, for the turbulence's scale lengths
 };
 
 // Flies the reference from the simulation's current state (at rest on the floor or in the air

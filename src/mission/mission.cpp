@@ -102,6 +102,8 @@ MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
   loop.inner = setup.controller.inner;
   loop.clearance = [&world](const Vec3& p) { return world.Clearance(p); };
   AddAirAndSensors(setup, &loop);
+  for (const Endpoint& goal : plan.via) loop.goals.push_back(goal.used);
+  loop.stop_at_goals = setup.stop_at_goals;
   if (!parts.observers.empty()) {
     loop.telemetry = [&parts](const TelemetrySample& s) {
       for (MissionObserver* observer : parts.observers) observer->OnSample(s);

@@ -175,6 +175,129 @@ LatticeParams FallbackLattice(const Aabb& free_bounds) {
   return params;
 }
 
+namespace {
+
+// One leg from `from` to `to` with the set-up's planner, seeded with `seed`, and the lattice
+// when RRT* gives up; fills the outcome's result, planner and lattice.
+void PlanLeg(const FlightSetup& setup, const CollisionWorld& world, const Vec3& from,
+             const Vec3& to, std::uint64_t seed, PlanOutcome* outcome) {
+  const PlanningSettings& settings = setup.planning;
+  const PlannerContext context{
+      world.free_bounds(),
+      Validity{[&world](const Vec3& p) { return world.IsPointFree(p); },
+               [&world](const Vec3& a, const Vec3& b) { return world.IsSegmentFree(a, b); }},
+      seed};
+  PlannerConfig config;
+  config.kind = PlannerKindFor(setup);
+  config.rrt = settings.rrt;
+  config.lattice = LatticeParamsFor(setup);
+  config.waypoints = settings.waypoints;
+  outcome->planner = config.kind;
+  outcome->result = MakePlanner(config, context)->Plan(from, to);
+  if (config.kind == "lattice") {
+    outcome->lattice = LatticeStats{outcome->result.stats.nodes, outcome->result.stats.edges,
+                                    outcome->result.stats.build_time};
+  }
+  // RRT* gave up on a map it could not search to the end in its budget (long narrow passages):
+  // a fine lattice over the map is exhaustive at its spacing, so "no path" is said only when
+  // neither finds one
+  if (outcome->result.status == PlanStatus::kNoPathWithinBudget && config.kind == "rrt_star" &&
+      settings.lattice_fallback) {
+    config.kind = "lattice";
+    config.lattice = FallbackLattice(world.free_bounds());
+    PlanResult fallback = MakePlanner(config, context)->Plan(from, to);
+    outcome->fallback_spacing = config.lattice.spacing;
+    outcome->lattice =
+        LatticeStats{fallback.stats.nodes, fallback.stats.edges, fallback.stats.build_time};
+    fallback.stats.planning_time += outcome->result.stats.planning_time;
+    fallback.stats.iterations = outcome->result.stats.iterations;
+    fallback.tree = std::move(outcome->result.tree);
+    outcome->result = std::move(fallback);
+    outcome->planner = "lattice (RRT* found no path)";
+  }
+}
+
+// Adds a later leg's plan to the mission's: the path continues (the leg's first point is the
+// last one's end), the counts and times add up, the first failure stays.
+void AppendLeg(PlanOutcome&& leg, PlanOutcome* mission) {
+  PlanResult& all = mission->result;
+  const PlanResult& next = leg.result;
+  if (all.status == PlanStatus::kSolved && next.status != PlanStatus::kSolved) {
+    all.status = next.status;
+    all.stats.blocked_leg = next.stats.blocked_leg;
+  }
+  if (next.status == PlanStatus::kSolved && !all.path.empty()) {
+    all.path.insert(all.path.end(), next.path.begin() + 1, next.path.end());
+  }
+  PlanStats& a = all.stats;
+  const PlanStats& b = next.stats;
+  a.iterations += b.iterations;
+  a.nodes += b.nodes;
+  a.planning_time += b.planning_time;
+  a.build_time += b.build_time;
+  if (a.final_cost >= 0 && b.final_cost >= 0) a.final_cost += b.final_cost;
+  if (a.first_cost >= 0 && b.first_cost >= 0) a.first_cost += b.first_cost;
+  all.tree.insert(all.tree.end(), next.tree.begin(), next.tree.end());
+  if (leg.planner != mission->planner &&
+      leg.planner.find("RRT* found no path") != std::string::npos) {
+    mission->planner = leg.planner;
+    mission->fallback_spacing = leg.fallback_spacing;
+  }
+  if (leg.lattice && !mission->lattice) mission->lattice = leg.lattice;
+}
+
+// A constant segment: the vehicle holds `p` for `duration` seconds.
+PolynomialSegment Hold(const Vec3& p, double duration) {
+  Eigen::MatrixXd coefficients = Eigen::MatrixXd::Zero(3, 8);
+  coefficients.col(0) = p;
+  return PolynomialSegment(coefficients, duration);
+}
+
+// A mission that stops at its goals: one rest-to-rest trajectory per leg, joined by holds.
+TrajectoryResult StoppingTrajectory(const FlightSetup& setup, const std::vector<Vec3>& path,
+                                    const std::vector<Vec3>& goals) {
+  TrajectoryResult joined;
+  joined.status = TrajectoryStatus::kSolved;
+  std::vector<PolynomialSegment> segments;
+  size_t from = 0;
+  for (size_t g = 0; g < goals.size(); ++g) {
+    size_t to = from + 1;
+    while (to + 1 < path.size() && (path[to] - goals[g]).norm() > 1e-9) ++to;
+    const std::vector<Vec3> leg(path.begin() + static_cast<long>(from),
+                                path.begin() + static_cast<long>(to) + 1);
+    TrajectoryResult part = TrajectoryAlong(setup, leg);
+    joined.stats.solve_time += part.stats.solve_time;
+    joined.stats.refinements += part.stats.refinements;
+    joined.stats.solver_message = part.stats.solver_message;
+    if (part.status != TrajectoryStatus::kSolved) {
+      joined.status = part.status;
+      joined.stats.solver_message = part.stats.solver_message;
+      return joined;
+    }
+    if (joined.stats.binding_limit.ratio < part.stats.binding_limit.ratio) {
+      joined.stats.binding_limit = part.stats.binding_limit;
+      joined.stats.binding_limit.t += joined.trajectory.duration();
+    }
+    for (const PolynomialSegment& s : part.trajectory.segments()) segments.push_back(s);
+    joined.waypoints.insert(joined.waypoints.end(), part.waypoints.begin() + (g == 0 ? 0 : 1),
+                            part.waypoints.end());
+    joined.corridors.insert(joined.corridors.end(), part.corridors.begin(), part.corridors.end());
+    if (g + 1 < goals.size() && setup.hold > 0) {
+      segments.push_back(Hold(goals[g], setup.hold));
+      joined.corridors.push_back(std::nullopt);
+    }
+    joined.trajectory = PiecewiseTrajectory(segments);
+    from = to;
+  }
+  joined.stats.segments = static_cast<int>(segments.size());
+  joined.stats.duration = joined.trajectory.duration();
+  joined.stats.max_speed = joined.trajectory.MaxNorm(kVelocity, 0.01);
+  joined.stats.max_accel = joined.trajectory.MaxNorm(kAcceleration, 0.01);
+  return joined;
+}
+
+}  // namespace
+
 PlanOutcome PlanFlight(const FlightSetup& setup, bool with_trajectory) {
   const PlanningSettings& settings = setup.planning;
   if (settings.trajectory_method == "given") {
@@ -200,48 +323,36 @@ PlanOutcome PlanFlight(const FlightSetup& setup, bool with_trajectory) {
   PlanOutcome outcome;
   std::tie(outcome.start, outcome.goal) = ResolveEndpoints(
       setup.map, world, setup.start, *setup.goal, setup.start_where, setup.goal_where);
-  if ((outcome.start.used - outcome.goal.used).norm() < 1e-3) {
-    throw InputError(setup.goal_where, "goal",
-                     "the goal " + FormatVector(*setup.goal, ", ") +
-                         " is where the flight starts (" + FormatVector(outcome.start.used, ", ") +
-                         " once both are inside the free space): there is nothing to fly; "
-                         "give another goal");
+  for (size_t i = 0; i < setup.via.size(); ++i) {
+    outcome.via.push_back(
+        ResolveEndpoint(setup.map, world, setup.via[i], "goals[" + std::to_string(i) + "]"));
   }
-  const PlannerContext context{
-      world.free_bounds(),
-      Validity{[&world](const Vec3& p) { return world.IsPointFree(p); },
-               [&world](const Vec3& a, const Vec3& b) { return world.IsSegmentFree(a, b); }},
-      setup.seed};
-  PlannerConfig config;
-  config.kind = PlannerKindFor(setup);
-  config.rrt = settings.rrt;
-  config.lattice = LatticeParamsFor(setup);
-  config.waypoints = settings.waypoints;
-  outcome.planner = config.kind;
-  outcome.result = MakePlanner(config, context)->Plan(outcome.start.used, outcome.goal.used);
-  if (config.kind == "lattice") {
-    outcome.lattice = LatticeStats{outcome.result.stats.nodes, outcome.result.stats.edges,
-                                   outcome.result.stats.build_time};
+  // the legs: start, the goals in order, the last goal
+  std::vector<Vec3> stops = {outcome.start.used};
+  for (const Endpoint& e : outcome.via) stops.push_back(e.used);
+  stops.push_back(outcome.goal.used);
+  for (size_t i = 1; i < stops.size(); ++i) {
+    if ((stops[i] - stops[i - 1]).norm() < 1e-3) {
+      throw InputError(setup.goal_where, i + 1 == stops.size() ? "goal" : "goals",
+                       "goal " + std::to_string(i) + " at " + FormatVector(stops[i], ", ") +
+                           " is where the flight already is (once inside the free space): "
+                           "there is nothing to fly; give another goal");
+    }
   }
-  // RRT* gave up on a map it could not search to the end in its budget (long narrow passages):
-  // a fine lattice over the map is exhaustive at its spacing, so "no path" is said only when
-  // neither finds one
-  if (outcome.result.status == PlanStatus::kNoPathWithinBudget && config.kind == "rrt_star" &&
-      settings.lattice_fallback) {
-    config.kind = "lattice";
-    config.lattice = FallbackLattice(world.free_bounds());
-    PlanResult fallback = MakePlanner(config, context)->Plan(outcome.start.used, outcome.goal.used);
-    outcome.fallback_spacing = config.lattice.spacing;
-    outcome.lattice =
-        LatticeStats{fallback.stats.nodes, fallback.stats.edges, fallback.stats.build_time};
-    fallback.stats.planning_time += outcome.result.stats.planning_time;
-    fallback.stats.iterations = outcome.result.stats.iterations;
-    fallback.tree = std::move(outcome.result.tree);
-    outcome.result = std::move(fallback);
-    outcome.planner = "lattice (RRT* found no path)";
+  PlanLeg(setup, world, stops[0], stops[1], setup.seed, &outcome);
+  for (size_t i = 2; i < stops.size(); ++i) {
+    // each leg its own planner seed, derived from the set-up's
+    PlanOutcome leg;
+    PlanLeg(setup, world, stops[i - 1], stops[i], setup.seed + 1000003ULL * (i - 1), &leg);
+    AppendLeg(std::move(leg), &outcome);
   }
   if (outcome.result.status != PlanStatus::kSolved || !with_trajectory) return outcome;
-  outcome.trajectory = TrajectoryAlong(setup, outcome.result.path);
+  if (setup.stop_at_goals && !outcome.via.empty()) {
+    std::vector<Vec3> goals(stops.begin() + 1, stops.end());
+    outcome.trajectory = StoppingTrajectory(setup, outcome.result.path, goals);
+  } else {
+    outcome.trajectory = TrajectoryAlong(setup, outcome.result.path);
+  }
   return outcome;
 }
 

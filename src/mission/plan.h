@@ -50,6 +50,7 @@ std::string DescribeMoves(const Endpoint& start, const Endpoint& goal);
 struct PlanOutcome {
   Endpoint start;
   Endpoint goal;
+  std::vector<Endpoint> via;  // a mission's goals before the last, in order
   PlanResult result;
   // the minimum-snap trajectory along the path, when there is a path
   std::optional<TrajectoryResult> trajectory;
@@ -68,7 +69,9 @@ std::string PlannerKindFor(const FlightSetup& setup);
 LatticeParams FallbackLattice(const Aabb& free_bounds);
 
 // Plans the set-up's start to goal with its planning settings (its seed seeds the planner), then
-// turns the path into a trajectory that keeps the trajectory clearance. Throws InputError for
+// turns the path into a trajectory that keeps the trajectory clearance. A mission plans a leg
+// from each goal to the next (each leg seeded from the seed) and flies one trajectory through
+// all of them, or one per leg joined by holds when it stops at its goals. Throws InputError for
 // unusable endpoints (or a missing goal); a missing path or trajectory is a status. Without
 // `with_trajectory`, only the path.
 PlanOutcome PlanFlight(const FlightSetup& setup, bool with_trajectory = true);

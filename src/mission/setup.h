@@ -34,6 +34,11 @@ struct FlightSetup {
   std::optional<Vec3> goal;
   std::string goal_origin;
   SourceLocation goal_where;
+  // A mission: the goals before `goal`, in order (empty: one goal). With stop_at_goals the
+  // vehicle stops at each for `hold` seconds; otherwise one trajectory flies through them.
+  std::vector<Vec3> via;
+  bool stop_at_goals = false;
+  double hold = 0.0;  // [s]
   std::uint64_t seed = 1;
   PlanningSettings planning;
   std::string vehicle_kind = "tello";  // the built-in the vehicle started from ([vehicle] kind)

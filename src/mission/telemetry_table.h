@@ -16,6 +16,7 @@ namespace aerobox {
 struct TelemetryExtras {
   bool air = false;      // wind_x..z [m/s], drag_x..z [N]
   bool sensors = false;  // est_*, imu_*, meas_* (README: telemetry columns)
+  bool goals = false;    // goal_index: a mission through several goals
 };
 TelemetryExtras TelemetryExtrasFor(const FlightSetup& setup);
 

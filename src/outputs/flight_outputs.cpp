@@ -96,6 +96,8 @@ void RenderOutputs::OnPlan(const PlanOutcome& plan) {
   overlay_.path = plan.result.path;
   overlay_.start = plan.start.used;
   overlay_.goal = plan.goal.used;
+  overlay_.via.clear();
+  for (const Endpoint& goal : plan.via) overlay_.via.push_back(goal.used);
   overlay_.tree = plan.result.tree;
   if (!plan.trajectory || plan.trajectory->status != TrajectoryStatus::kSolved) return;
   const PiecewiseTrajectory& trajectory = plan.trajectory->trajectory;

@@ -98,6 +98,22 @@ JsonObject RunSummary(const FlightSetup& setup, const MissionResult& result,
           .Add("estimate_max_m", flight.estimate_max_error);
     }
     if (setup.wind.Enabled()) summary.Add("max_wind_mps", flight.max_wind);
+    if (!plan.via.empty()) {
+      // a mission: every goal, whether and when it was reached
+      std::vector<JsonObject> goals;
+      for (size_t i = 0; i <= plan.via.size(); ++i) {
+        const bool last = i == plan.via.size();
+        const Vec3& p = last ? plan.goal.used : plan.via[i].used;
+        const bool reached =
+            last ? flight.status == FlightStatus::kReachedGoal : i < flight.goal_times.size();
+        JsonObject goal;
+        AddPoint(&goal, "goal", p);
+        goal.Add("reached", reached)
+            .Add("time_s", reached ? (last ? flight.time : flight.goal_times[i]) : -1.0);
+        goals.push_back(goal);
+      }
+      summary.Add("goals", goals).Add("stop_at_goals", setup.stop_at_goals);
+    }
   }
   // the world it flew in: what was on
   JsonObject wind;

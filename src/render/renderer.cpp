@@ -126,6 +126,7 @@ struct Renderer::Impl {
     }
     if (overlay.start) AddSphere(*overlay.start, scale, kStart);
     if (overlay.goal) AddSphere(*overlay.goal, scale, kGoal);
+    for (const Vec3& goal : overlay.via) AddSphere(goal, scale, kGoal);
   }
 
   // The chase camera's distance: pulled in along the line of sight when a map box (geom

@@ -715,8 +715,29 @@ Scenario ReadScenario(std::istream& in, const std::string& file) {
       scenario.start = ReadPoint(node, file, "start");
       scenario.start_line = LineOf(node);
     } else if (name == "goal") {
+      if (table.get("goals") != nullptr) {
+        throw InputError(where, name, "give goal or goals, not both");
+      }
       scenario.goal = ReadPoint(node, file, "goal");
       scenario.goal_line = LineOf(node);
+    } else if (name == "goals") {
+      const toml::array* points = node.as_array();
+      if (points == nullptr || points->empty()) {
+        throw InputError(where, name, "expected an array of points [[x, y, z], ...] in metres");
+      }
+      for (size_t i = 0; i < points->size(); ++i) {
+        const Vec3 p = ReadPoint((*points)[i], file, ("goals[" + std::to_string(i) + "]").c_str());
+        if (i + 1 < points->size()) {
+          scenario.via.push_back(p);
+        } else {
+          scenario.goal = p;
+        }
+      }
+      scenario.goal_line = LineOf(node);
+    } else if (name == "stop_at_goals") {
+      scenario.stop_at_goals = Boolean(node, file, name);
+    } else if (name == "hold") {
+      scenario.hold = Number(node, file, name, 0, 600);
     } else if (name == "seed") {
       // an integer node only: toml++ would convert a float such as 2e30 by an out-of-range
       // cast (undefined behaviour; the fuzzer found it)
@@ -760,7 +781,8 @@ Scenario ReadScenario(std::istream& in, const std::string& file) {
       }
     } else {
       throw InputError(where, name,
-                       "unknown key (expected name, map, start, goal, seed, [planner], "
+                       "unknown key (expected name, map, start, goal, goals, stop_at_goals, "
+                       "hold, seed, [planner], "
                        "[trajectory], [vehicle], [controller], [flight], [wind], [aero], "
                        "[sensors] or [render])");
     }
@@ -879,6 +901,16 @@ FlightSetup SetupFrom(const std::string& path, std::optional<Scenario> scenario,
                            {setup.map.goal, "map file", in_map},
                            {from_side_file(false), "start/goal file", in_side_file}},
                           &setup.goal_origin, &setup.goal_where);
+  // the mission's goals before the last: the command line's replace the scenario's
+  if (overrides.goal) {
+    setup.via = overrides.via;
+  } else if (scenario && setup.goal_origin == "scenario") {
+    setup.via = scenario->via;
+  }
+  if (scenario) {
+    setup.stop_at_goals = scenario->stop_at_goals;
+    setup.hold = scenario->hold;
+  }
   if (setup.planning.trajectory_method == "given" && !setup.planning.given_trajectory.empty()) {
     // a given trajectory starts and ends where it does
     const SourceLocation in_trajectory{path, 0};

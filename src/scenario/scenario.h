@@ -18,6 +18,9 @@ namespace aerobox {
 //   map = "map.json"                     # required; relative to the scenario file
 //   start = [0.7, -4.3, 0.7]             # optional when the map gives one [m]
 //   goal = [8.0, 18.0, 3.0]              # optional when the map gives one [m]
+//   goals = [[..], [..], [..]]           # or a mission through several, in order [m]
+//   stop_at_goals = false                # stop at each goal (else fly through)
+//   hold = 0.0                           # [s] at each intermediate goal, when stopping
 //   seed = 1                             # optional; seeds every random generator
 //   [planner]                            # optional: clearance, max_iterations, time_budget,
 //                                        #   max_step, goal_bias, rewire_factor, informed,
@@ -42,6 +45,11 @@ struct Scenario {
   int start_line = 0;
   std::optional<Vec3> goal;
   int goal_line = 0;
+  // goals = [[x, y, z], ...]: a mission through each in order (the last is `goal`, the others
+  // go into `via`); stop_at_goals: stop at each (for `hold` seconds) instead of flying through
+  std::vector<Vec3> via;
+  bool stop_at_goals = false;
+  double hold = 0.0;  // [s]
   std::uint64_t seed = 1;
   PlanningSettings planning;
   std::string vehicle_kind = "tello";   // [vehicle] kind
@@ -65,6 +73,7 @@ Scenario ReadScenario(std::istream& in, const std::string& file);
 struct SetupOverrides {
   std::optional<Vec3> start;
   std::optional<Vec3> goal;
+  std::vector<Vec3> via;  // --goal given several times: all but the last, in order
   std::optional<std::uint64_t> seed;
   std::optional<Vec3> wind_mean;     // [m/s] --wind
   std::optional<double> turbulence;  // [m/s] --turbulence: Dryden with this intensity, 0: none

@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <map>
 #include <sstream>
 #include <vector>
 
@@ -313,6 +314,86 @@ TEST_CASE("fly --wind --turbulence: the wind, its drag and their columns") {
   REQUIRE(still.code == kExitReachedGoal);
   const std::string ideal = testing::ReadFile(fs::path(out) / "telemetry.csv");
   CHECK(ideal.substr(0, ideal.find('\n')).find("wind_x") == std::string::npos);
+}
+
+namespace {
+
+// telemetry.csv as columns by name.
+std::map<std::string, std::vector<double>> ReadColumns(const fs::path& file) {
+  std::istringstream text(testing::ReadFile(file));
+  std::string line;
+  std::getline(text, line);
+  std::vector<std::string> names;
+  std::istringstream header(line);
+  for (std::string name; std::getline(header, name, ',');) names.push_back(name);
+  std::map<std::string, std::vector<double>> columns;
+  while (std::getline(text, line)) {
+    std::istringstream fields(line);
+    std::string field;
+    for (size_t i = 0; i < names.size() && std::getline(fields, field, ','); ++i) {
+      columns[names[i]].push_back(std::stod(field));
+    }
+  }
+  return columns;
+}
+
+}  // namespace
+
+TEST_CASE("a mission flies through its goals in order, or stops at each when asked") {
+  const TempDir dir;
+  const fs::path maze = testing::SourceDir() / "scenes" / "maze" / "map.json";
+  const std::string goals = "goals = [[1.5, 3.0, 1.5], [5.0, 4.0, 1.5], [9.0, 7.0, 1.5]]\n";
+  const std::string through = dir.Write(
+      "through.toml", "map = \"" + maze.string() + "\"\nstart = [1.0, 5.0, 1.5]\n" + goals);
+  const std::string stopping =
+      dir.Write("stopping.toml", "map = \"" + maze.string() +
+                                     "\"\nstart = [1.0, 5.0, 1.5]\nstop_at_goals = true\n"
+                                     "hold = 1.0\n" +
+                                     goals);
+  for (const std::string& scenario : {through, stopping}) {
+    CAPTURE(scenario);
+    const bool stops = scenario == stopping;
+    const fs::path out = dir.path() / (stops ? "stop" : "through");
+    const Run run = Aerobox({"fly", scenario, "--no-video", "--quiet", "--out", out.string()});
+    CAPTURE(run.err);
+    REQUIRE(run.code == kExitReachedGoal);
+    const nlohmann::json summary = testing::ReadSummary(out / "summary.json");
+    REQUIRE(summary["goals"].size() == 3);
+    auto columns = ReadColumns(out / "telemetry.csv");
+    const std::vector<double>& t = columns["t"];
+    const std::vector<double>& index = columns["goal_index"];
+    REQUIRE(index.size() == t.size());
+    CHECK(index.front() == 0);
+    CHECK(index.back() == 2);  // the last goal ends the flight
+    double slowest = 1e9;      // between the first second and the last
+    double still_at_goal = 0;  // [s] below 0.1 m/s within 0.1 m of goal 1
+    const Vec3 first(1.5, 3.0, 1.5);
+    for (size_t i = 0; i < t.size(); ++i) {
+      CHECK(index[i] >= (i > 0 ? index[i - 1] : 0));  // goals are reached in order
+      const Vec3 v(columns["vx"][i], columns["vy"][i], columns["vz"][i]);
+      const Vec3 p(columns["x"][i], columns["y"][i], columns["z"][i]);
+      if (t[i] > 1.0 && t[i] < t.back() - 1.0) slowest = std::min(slowest, v.norm());
+      if ((p - first).norm() < 0.1 && v.norm() < 0.1) still_at_goal += t[1] - t[0];
+    }
+    if (stops) {
+      CHECK(still_at_goal >= 1.0);  // the hold
+    } else {
+      CHECK(slowest > 0.5);  // it flies through
+      CHECK(still_at_goal == 0.0);
+    }
+  }
+  // the same mission from the command line: --goal several times
+  const fs::path out = dir.path() / "cli";
+  const Run run = Aerobox({"fly", maze.string(), "--start", "1,5,1.5", "--goal", "1.5,3,1.5",
+                           "--goal", "9,7,1.5", "--no-video", "--quiet", "--out", out.string()});
+  CAPTURE(run.err);
+  REQUIRE(run.code == kExitReachedGoal);
+  CHECK(run.out.find("goals       2 of 2 reached") != std::string::npos);
+  // a goal inside a wall names it
+  const Run bad = Aerobox({"fly", maze.string(), "--start", "1,5,1.5", "--goal", "5.05,5.5,1.5",
+                           "--goal", "9,7,1.5", "--no-video", "--quiet", "--out", out.string()});
+  CHECK(bad.code == kExitBadInput);
+  CHECK(bad.err.find("goals[0]") != std::string::npos);
 }
 
 TEST_CASE("model writes the vehicle's MJCF") {

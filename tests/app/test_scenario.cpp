@@ -370,4 +370,34 @@ TEST_CASE("wind brings drag and the drag feed-forward unless the scenario says o
   CHECK(cli.aero.Enabled());
 }
 
+TEST_CASE("goals: a mission's keys, and the command line's goals replace the scenario's") {
+  const TempDir dir;
+  dir.Write("m.json", kMapJson);
+  const std::string file = (dir.path() / "s.toml").string();
+  const FlightSetup mission = LoadFlightSetupFromText(
+      "map = \"m.json\"\ngoals = [[2, 2, 1], [8, 2, 1], [9, 9, 1]]\nstop_at_goals = true\n"
+      "hold = 0.5\n",
+      file, {});
+  REQUIRE(mission.via.size() == 2);
+  CHECK(mission.via[1] == Vec3(8, 2, 1));
+  CHECK(*mission.goal == Vec3(9, 9, 1));
+  CHECK(mission.stop_at_goals);
+  CHECK(mission.hold == 0.5);
+  SetupOverrides cli;
+  cli.goal = Vec3(9, 8, 1);
+  const FlightSetup replaced =
+      LoadFlightSetupFromText("map = \"m.json\"\ngoals = [[2, 2, 1], [9, 9, 1]]\n", file, cli);
+  CHECK(replaced.via.empty());
+  CHECK(*replaced.goal == Vec3(9, 8, 1));
+  CHECK(ScenarioError("map = \"m.txt\"\ngoal = [1, 1, 1]\ngoals = [[1, 2, 1]]\n") ==
+        "scenes/x/scenario.toml:2: goal: give goal or goals, not both");
+  CHECK(ScenarioError("map = \"m.txt\"\ngoals = []\n") ==
+        "scenes/x/scenario.toml:2: goals: expected an array of points [[x, y, z], ...] in "
+        "metres");
+  CHECK(ScenarioError("map = \"m.txt\"\ngoals = [[1, 2, 1], [1, 2]]\n") ==
+        "scenes/x/scenario.toml:2: goals[1]: expected an array of 3 numbers [x, y, z] in metres");
+  CHECK(ScenarioError("map = \"m.txt\"\nhold = -1\n") ==
+        "scenes/x/scenario.toml:2: hold: expected a number from 0 to 600");
+}
+
 }  // namespace aerobox

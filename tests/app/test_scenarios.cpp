@@ -104,6 +104,22 @@ TEST_CASE("scenario windy_window: wind, drag and sensors, five seeds") {
   }
 }
 
+// Three goals in the maze: one trajectory through all of them, in order (test_cli.cpp checks
+// that it does not stop between them).
+TEST_CASE("scenario maze_mission: three goals in one trajectory") {
+  const Flight flight = CheckSuccess(Scene("maze_mission"));
+  const nlohmann::json& goals = flight.summary["goals"];
+  REQUIRE(goals.size() == 3);
+  double last = 0.0;
+  for (const nlohmann::json& goal : goals) {
+    CHECK(goal["reached"] == true);
+    CHECK(goal["time_s"].get<double>() > last);  // in order
+    last = goal["time_s"].get<double>();
+  }
+  CHECK(flight.summary["stop_at_goals"] == false);
+  CHECK(flight.out.find("goals       3 of 3 reached") != std::string::npos);
+}
+
 TEST_CASE("scenario impossible: exit 3, no path") {
   const Flight flight = Fly(Scene("impossible"));
   CHECK(flight.code == kExitNoPath);
