@@ -75,7 +75,12 @@ AxisQp BuildQp(const MinSnapProblem& problem) {
         if (h == 0.0) continue;
         if (r == kPosition) {
           offset.row(i * kCoefficients + row) += h * problem.waypoints[knot].transpose();
-        } else if (knot != 0 && knot != segments) {  // rest at both ends: zero, not free
+        } else if (knot == 0) {  // the start's derivatives are given (zero: at rest)
+          const Vec3& d = r == kVelocity       ? problem.start_velocity
+                          : r == kAcceleration ? problem.start_acceleration
+                                               : problem.start_jerk;
+          offset.row(i * kCoefficients + row) += h * d.transpose();
+        } else if (knot != segments) {  // at rest at the end: zero, not free
           to_coefficients.emplace_back(i * kCoefficients + row, FreeIndex(knot, r), h);
         }
       }
@@ -373,6 +378,9 @@ void MinSnapProblem::Validate() const {
   }
   for (const Vec3& w : waypoints) {
     if (!w.allFinite()) throw std::invalid_argument("MinSnapProblem: non-finite waypoint");
+  }
+  if (!start_velocity.allFinite() || !start_acceleration.allFinite() || !start_jerk.allFinite()) {
+    throw std::invalid_argument("MinSnapProblem: non-finite start state");
   }
   if (!corridors.empty() && corridors.size() != durations.size()) {
     throw std::invalid_argument("MinSnapProblem: need one corridor entry per segment");

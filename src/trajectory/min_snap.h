@@ -1,9 +1,9 @@
 // Minimum-snap trajectories through waypoints (Mellinger and Kumar 2011): minimise the integral
 // of squared snap over degree-7 segments with fixed durations, subject to the waypoints, continuity
 // of velocity, acceleration, jerk and snap at interior waypoints, rest (v = a = j = 0) at both
-// ends and, optionally, samples of every segment inside an axis-aligned box (a safe corridor).
-// A quadratic programme: solved in closed form (equalities only, a sparse KKT system) or with
-// Ipopt (with the box constraints; Ipopt stays inside the .cpp).
+// ends (or a given start state) and, optionally, samples of every segment inside an axis-aligned
+// box (a safe corridor). A quadratic programme: solved in closed form (equalities only, a sparse
+// KKT system) or with Ipopt (with the box constraints; Ipopt stays inside the .cpp).
 #pragma once
 
 #include <optional>
@@ -22,6 +22,12 @@ struct MinSnapProblem {
   std::vector<std::optional<Aabb>> corridors;
   // Interior samples per segment at which a corridor is enforced (s = k / (n + 1)).
   int samples_per_segment = 16;
+  // The first waypoint's velocity [m/s], acceleration [m/s^2] and jerk [m/s^3]: zero starts at
+  // rest; a trajectory that continues another starts with that one's (replanning in flight).
+  // The last waypoint is always at rest.
+  Vec3 start_velocity = Vec3::Zero();
+  Vec3 start_acceleration = Vec3::Zero();
+  Vec3 start_jerk = Vec3::Zero();
 
   // Throws std::invalid_argument for inconsistent sizes or non-positive durations.
   void Validate() const;

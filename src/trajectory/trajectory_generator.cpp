@@ -429,4 +429,87 @@ TrajectoryResult GenerateTrajectory(const std::vector<Vec3>& path, const Traject
   return result;
 }
 
+TrajectoryResult ContinueTrajectory(const StartState& start, const std::vector<Vec3>& path,
+                                    const TrajectoryWorld& world, const TrajectoryParams& params) {
+  params.Validate();
+  const auto begin = std::chrono::steady_clock::now();
+  TrajectoryResult result;
+  if (path.size() < 2) throw std::invalid_argument("ContinueTrajectory: path too short");
+  const bool min_time = params.objective == TimeObjective::kMinTime && params.vehicle.valid();
+  const FlatnessLimits limits = min_time ? EffectiveLimits(params) : FlatnessLimits();
+  // the times' first guess: each leg's trapezoid at the speed and acceleration the vehicle
+  // reaches (the start's own speed makes the first leg no slower than from rest)
+  const double speed = min_time ? std::min(limits.max_speed, params.max_speed) : params.max_speed;
+  const double accel = min_time ? std::min(kGravity * std::tan(limits.max_tilt), params.max_accel)
+                                : params.max_accel;
+  MinSnapProblem problem;
+  problem.waypoints = CutLongSegments(WithoutNearRepeats(path, world), params.cruise_piece);
+  problem.waypoints.front() = start.p_W;
+  problem.start_velocity = start.v_W;
+  problem.start_acceleration = start.a_W;
+  problem.start_jerk = start.j_W;
+  try {
+    for (int round = 0;; ++round) {
+      problem.durations = TrapezoidDurationsAlongLegs(problem.waypoints, speed, accel);
+      // per segment: stretched (or shrunk) by what its own check asks, damped, until feasible
+      bool feasible = false;
+      for (int k = 0; k < 12 && !feasible; ++k) {
+        result.trajectory = SolveMinSnapClosedForm(problem);
+        if (!min_time) {
+          const double v = result.trajectory.MaxNorm(kVelocity, params.check_step) / speed;
+          const double a = result.trajectory.MaxNorm(kAcceleration, params.check_step) / accel;
+          const double scale = std::max(v, std::sqrt(a));
+          feasible = scale <= 1.0;
+          if (!feasible) {
+            for (double& t : problem.durations) t *= scale * 1.01;
+          }
+          continue;
+        }
+        const std::vector<FeasibilityCheck> checks =
+            CheckSegments(result.trajectory, limits, params.check_step);
+        feasible = WorstScale(checks) <= 1.0;
+        if (feasible) break;
+        for (size_t i = 0; i < checks.size(); ++i) {
+          if (checks[i].scale > 1.0) problem.durations[i] *= std::sqrt(checks[i].scale) * 1.02;
+        }
+      }
+      if (!feasible) {
+        result.status = TrajectoryStatus::kInfeasible;
+        result.stats.solver_message = "no feasible times within 12 rounds";
+        break;
+      }
+      result.stats.solver_message = "closed form, continuing";
+      const std::optional<double> hit =
+          FirstCollisionTime(result.trajectory, world, params.check_step);
+      if (!hit) {
+        result.status = TrajectoryStatus::kSolved;
+        break;
+      }
+      if (round >= params.max_refinements) {
+        result.status = TrajectoryStatus::kCollides;
+        break;
+      }
+      const std::vector<double> knots = result.trajectory.KnotTimes();
+      size_t segment = 0;
+      while (segment + 2 < knots.size() && knots[segment + 1] < *hit) ++segment;
+      std::vector<Vec3>& w = problem.waypoints;
+      w.insert(w.begin() + static_cast<long>(segment) + 1, 0.5 * (w[segment] + w[segment + 1]));
+      ++result.stats.refinements;
+    }
+  } catch (const SingularSystem& e) {
+    result.status = TrajectoryStatus::kFailed;
+    result.stats.solver_message = e.what();
+  }
+  result.waypoints = problem.waypoints;
+  result.corridors.assign(problem.waypoints.size() - 1, std::nullopt);
+  result.stats.segments = static_cast<int>(problem.waypoints.size()) - 1;
+  if (min_time && result.status == TrajectoryStatus::kSolved) {
+    result.stats.binding_limit = CheckFeasibility(result.trajectory, limits, params.check_step);
+  }
+  MeasureTrajectory(params, &result);
+  result.stats.solve_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  return result;
+}
+
 }  // namespace aerobox

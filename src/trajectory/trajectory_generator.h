@@ -101,6 +101,24 @@ struct TrajectoryResult {
 TrajectoryResult GenerateTrajectory(const std::vector<Vec3>& path, const TrajectoryWorld& world,
                                     const TrajectoryParams& params);
 
+// Where a trajectory that continues another starts: its position, velocity, acceleration and
+// jerk at the switch.
+struct StartState {
+  Vec3 p_W = Vec3::Zero();
+  Vec3 v_W = Vec3::Zero();
+  Vec3 a_W = Vec3::Zero();
+  Vec3 j_W = Vec3::Zero();
+};
+
+// A trajectory along `path` (path.front() is start.p_W) that starts in `start` and ends at rest,
+// for replanning in flight: min-snap through the waypoints (closed form, no corridors: fast),
+// its times from the vehicle's limits (params.vehicle with its margins; the snap objective's
+// max_speed and max_accel otherwise), stretched segment by segment until it is feasible, and
+// midpoints inserted where it leaves free space. The times are re-solved, never stretched
+// uniformly after the solve, so the start state holds exactly.
+TrajectoryResult ContinueTrajectory(const StartState& start, const std::vector<Vec3>& path,
+                                    const TrajectoryWorld& world, const TrajectoryParams& params);
+
 // The limits a kMinTime trajectory is held to: `params.vehicle` with the margins and caps.
 FlatnessLimits EffectiveLimits(const TrajectoryParams& params);
 

@@ -124,4 +124,37 @@ TEST_CASE("min-time: a long straight leg cruises at the speed limit") {
   CHECK(result.stats.duration < 1.2 * (200.0 / 6.0 + 6.0 / accel));
 }
 
+TEST_CASE("a continuing trajectory starts in the state it continues and ends at rest") {
+  TrajectoryParams params;
+  params.objective = TimeObjective::kMinTime;
+  params.max_speed = params.max_accel = std::numeric_limits<double>::infinity();
+  params.vehicle = Tello();
+  StartState start;
+  start.p_W = Vec3(0, 0, 1);
+  start.v_W = Vec3(3, 1, 0);  // flying at 3.2 m/s, turning
+  start.a_W = Vec3(-1, 2, 0.5);
+  start.j_W = Vec3(0.5, 0, -2);
+  const std::vector<Vec3> path = {start.p_W, Vec3(4, 3, 1.5), Vec3(2, 8, 1)};
+  const TrajectoryResult r = ContinueTrajectory(start, path, Open(), params);
+  REQUIRE(r.status == TrajectoryStatus::kSolved);
+  const PiecewiseTrajectory& t = r.trajectory;
+  CHECK((t.Evaluate3(0, kPosition) - start.p_W).norm() < 1e-9);
+  CHECK((t.Evaluate3(0, kVelocity) - start.v_W).norm() < 1e-9);
+  CHECK((t.Evaluate3(0, kAcceleration) - start.a_W).norm() < 1e-9);
+  CHECK((t.Evaluate3(0, kJerk) - start.j_W).norm() < 1e-9);
+  CHECK((t.Evaluate3(t.duration(), kPosition) - path.back()).norm() < 1e-9);
+  CHECK(t.Evaluate3(t.duration(), kVelocity).norm() < 1e-9);
+  CHECK(CheckFeasibility(t, EffectiveLimits(params), 0.001).ratio <= 1.005);
+  // a wall across the first leg: midpoints until it passes, or an honest status
+  const TrajectoryWorld walled{
+      [](const Aabb&) { return true; },
+      [](const Vec3& a, const Vec3& b) { return std::max(a.x(), b.x()) < 4.5; }};
+  const TrajectoryResult bounded = ContinueTrajectory(start, path, walled, params);
+  CHECK((bounded.status == TrajectoryStatus::kSolved ||
+         bounded.status == TrajectoryStatus::kCollides));
+  if (bounded.status == TrajectoryStatus::kSolved) {
+    CHECK_FALSE(FirstCollisionTime(bounded.trajectory, walled, 0.01));
+  }
+}
+
 }  // namespace aerobox
