@@ -189,6 +189,14 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
     text << std::setprecision(3) << value << " m";
     return text.str();
   };
+  if (setup.HasUnknown()) {
+    table << "\n  discovery   " << result.revealed_boxes << " of " << result.unknown_boxes
+          << " unknown boxes revealed; " << result.replans.size() << " replan(s)";
+    for (const ReplanEvent& e : result.replans) {
+      table << "; at " << e.t << " s (" << e.trigger << "): " << e.outcome << " in "
+            << std::setprecision(1) << 1e3 * e.latency << " ms" << std::setprecision(4);
+    }
+  }
   table << "\n  speed       " << std::setprecision(2) << flight.AverageSpeed()
         << " m/s on average, " << flight.top_speed << " m/s at most; rotors at most "
         << std::setprecision(0) << 100 * flight.peak_rotor_fraction

@@ -13,6 +13,7 @@ enum class SeedStream : std::uint64_t {
   kImu = 2,
   kPositionSensor = 3,
   kInitialEstimate = 4,
+  kUnknownBoxes = 5,
 };
 
 // A seed for `stream` derived from `seed` (SplitMix64 over both: well mixed, and the same on

@@ -102,9 +102,11 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
   result.min_clearance = std::numeric_limits<double>::infinity();
   result.control_rate = loop.control_rate;
 
-  const double duration = reference.duration;
-  const double end_time = duration + params.settle_time;
-  const Vec3 goal = reference.evaluate(duration, kPosition);
+  // the reference flown: the one given, until an updater replaces it
+  Reference current = reference;
+  double duration = current.duration;
+  double end_time = duration + params.settle_time;
+  const Vec3 goal = current.evaluate(duration, kPosition);
   double yaw = 0.0;
   {
     const Vec3 x_W = sim->VehicleState().q_WB * Vec3::UnitX();
@@ -112,7 +114,7 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
   }
   // on the floor until the first step without floor contact
   bool airborne = sim->VehicleContacts().empty();
-  const Vec3 start = reference.evaluate(0.0, kPosition);
+  const Vec3 start = current.evaluate(0.0, kPosition);
   bool taking_off = !airborne && (sim->VehicleState().p_W - start).norm() > kTakeoffTolerance;
   double takeoff_time = 0.0;  // [s] of flight when the reference started
   double squared_error_sum = 0.0;
@@ -167,25 +169,35 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
     // the setpoint: the reference's flat outputs when the controller runs, its end held after
     // it; between control steps it is held (the controller sees nothing else)
     const bool control_step = k % divider == 0;
+    if (control_step && loop.update_reference && !taking_off) {
+      const State seen_now = sensing ? sensing->Estimate() : state;
+      if (std::optional<Reference> next = loop.update_reference(
+              t, tr, seen_now, static_cast<int>(result.goal_times.size()), current)) {
+        current = std::move(*next);
+        duration = current.duration;
+        end_time = duration + params.settle_time;
+        ++result.replans;
+      }
+    }
     if (control_step) {
       setpoint = FlatOutput();
-      setpoint.p_W = reference.evaluate(std::min(tr, duration), kPosition);
+      setpoint.p_W = current.evaluate(std::min(tr, duration), kPosition);
       if (tr < duration) {
-        setpoint.v_W = reference.evaluate(tr, kVelocity);
-        setpoint.a_W = reference.evaluate(tr, kAcceleration);
-        setpoint.j_W = reference.evaluate(tr, kJerk);
-        setpoint.s_W = reference.evaluate(tr, kSnap);
+        setpoint.v_W = current.evaluate(tr, kVelocity);
+        setpoint.a_W = current.evaluate(tr, kAcceleration);
+        setpoint.j_W = current.evaluate(tr, kJerk);
+        setpoint.s_W = current.evaluate(tr, kSnap);
         const double speed_xy = setpoint.v_W.head<2>().norm();
-        if (reference.heading) {
-          std::tie(yaw, setpoint.yaw_rate) = reference.heading(tr);
+        if (current.heading) {
+          std::tie(yaw, setpoint.yaw_rate) = current.heading(tr);
         } else if (params.face_travel && speed_xy > 0.2) {
           yaw = std::atan2(setpoint.v_W.y(), setpoint.v_W.x());
           setpoint.yaw_rate =
               (setpoint.v_W.x() * setpoint.a_W.y() - setpoint.v_W.y() * setpoint.a_W.x()) /
               (speed_xy * speed_xy);
         }
-      } else if (reference.heading) {
-        yaw = reference.heading(duration).first;
+      } else if (current.heading) {
+        yaw = current.heading(duration).first;
       }
       setpoint.yaw = yaw;
       if (t >= nan_from) setpoint.p_W.x() = std::numeric_limits<double>::quiet_NaN();
@@ -226,7 +238,7 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
         controller.Report(&report);
         loop.telemetry(
             {t, state, setpoint, command, inner_out, sim->RotorThrusts(), error, c, report,
-             static_cast<int>(result.goal_times.size()), wind_W, aero.force_W,
+             static_cast<int>(result.goal_times.size()), result.replans, wind_W, aero.force_W,
              sensing ? std::optional<EstimateSample>(sensing->Sample(state)) : std::nullopt});
       }
     }

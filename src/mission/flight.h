@@ -55,6 +55,7 @@ struct TelemetrySample {
   double clearance = 0.0;             // to the nearest obstacle [m]
   std::vector<double> report;         // the controller's own columns (ReportColumns)
   int goal_index = 0;                 // a mission's goals reached so far (the next one's index)
+  int replans = 0;                    // references replaced so far (FlightLoop::update_reference)
   Vec3 wind_W = Vec3::Zero();         // the wind at the vehicle [m/s]
   Vec3 aero_force_W = Vec3::Zero();   // drag on the vehicle [N]
   // With sensors on: the estimate the controller flew on, its error and the readings; empty
@@ -84,6 +85,7 @@ struct FlightResult {
   double max_wind = 0.0;  // [m/s] the strongest wind met
   // a mission's goals before the last: when each was reached [s], in order (as many as were)
   std::vector<double> goal_times;
+  int replans = 0;  // how often the reference was replaced in flight
   double AverageSpeed() const { return time > 0 ? distance / time : 0.0; }  // [m/s]
 };
 
@@ -124,6 +126,13 @@ struct FlightLoop {
   // succeeds only when all were, in order.
   std::vector<Vec3> goals;
   bool stop_at_goals = false;
+  // Called at each control step (once airborne) with the flight time, the reference's time
+  // [s], the state the controller sees, the goals reached and the reference flown; a reference
+  // it returns is flown from then on, on the same clock (it must agree with the current one up
+  // to now, so the setpoint does not jump). Empty: the reference is flown as given.
+  std::function<std::optional<Reference>(double t, double tr, const State& state, int goals_reached,
+                                         const Reference& current)>
+      update_reference;
   double ground_z = 0.0;  // [m] the floor's height, for the turbulence's scale lengths
 };
 

@@ -55,7 +55,14 @@ MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
   // plan and solve; the scene thread is joined on every way out
   MissionResult result;
   try {
-    result.plan = PlanFlight(setup);
+    // the planner knows only the boxes that are not unknown
+    if (setup.HasUnknown()) {
+      FlightSetup known = setup;
+      known.map = KnownMap(setup.map, setup.unknown);
+      result.plan = PlanFlight(known);
+    } else {
+      result.plan = PlanFlight(setup);
+    }
   } catch (...) {
     if (scene.valid()) scene.wait();
     throw;
@@ -104,9 +111,25 @@ MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
   AddAirAndSensors(setup, &loop);
   for (const Endpoint& goal : plan.via) loop.goals.push_back(goal.used);
   loop.stop_at_goals = setup.stop_at_goals;
+  // boxes found in flight: the replanner senses them and replans around them
+  std::optional<Replanner> replanner;
+  if (setup.HasUnknown()) {
+    std::vector<Vec3> goals = loop.goals;
+    goals.push_back(plan.goal.used);
+    replanner.emplace(setup.map, setup.unknown, setup.PlannerCollision(),
+                      setup.TrajectoryCollision(), setup.planning.rrt, TrajectoryParamsFor(setup),
+                      setup.sensing, setup.replan, goals, plan.result.path, setup.seed);
+    loop.update_reference = [&replanner](double t, double tr, const State& state, int reached,
+                                         const Reference& current) {
+      return replanner->Update(t, tr, state, reached, current);
+    };
+  }
   if (!parts.observers.empty()) {
-    loop.telemetry = [&parts](const TelemetrySample& s) {
-      for (MissionObserver* observer : parts.observers) observer->OnSample(s);
+    loop.telemetry = [&parts, &replanner](const TelemetrySample& s) {
+      for (MissionObserver* observer : parts.observers) {
+        if (replanner) observer->OnDiscovery(replanner->revealed_at(), replanner->events());
+        observer->OnSample(s);
+      }
     };
   }
   const auto begin = std::chrono::steady_clock::now();
@@ -114,6 +137,12 @@ MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
   result.flight_wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   result.flown = true;
+  if (replanner) {
+    result.replans = replanner->events();
+    result.revealed_at = replanner->revealed_at();
+    result.unknown_boxes = replanner->unknown_count();
+    result.revealed_boxes = replanner->revealed_count();
+  }
   result.status = result.flight.status == FlightStatus::kReachedGoal ? MissionStatus::kReachedGoal
                                                                      : MissionStatus::kFlightFailed;
   for (MissionObserver* observer : parts.observers) observer->OnFlightEnd(*sim, result.flight);

@@ -33,6 +33,10 @@ class MissionObserver {
   // One per control step.
   virtual void OnSample(const TelemetrySample&) {}
   virtual void OnFlightEnd(const Simulation&, const FlightResult&) {}
+  // With unknown boxes, before each OnSample: when each box was revealed so far ([s]; < 0: not
+  // yet or known from the start), and every replan so far.
+  virtual void OnDiscovery(const std::vector<double>& /*revealed_at*/,
+                           const std::vector<ReplanEvent>& /*replans*/) {}
 };
 
 enum class MissionStatus { kReachedGoal, kNoPath, kNoTrajectory, kFlightFailed };
@@ -44,6 +48,11 @@ struct MissionResult {
   bool flown = false;
   FlightResult flight;            // when flown
   double flight_wall_time = 0.0;  // [s]
+  // with unknown boxes: every replan, and when each box was revealed ([s]; < 0: never)
+  std::vector<ReplanEvent> replans;
+  std::vector<double> revealed_at;
+  int unknown_boxes = 0;
+  int revealed_boxes = 0;
 };
 
 struct MissionParts {

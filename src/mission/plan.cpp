@@ -382,6 +382,14 @@ TrajectoryParams TrajectoryParamsFor(const FlightSetup& setup) {
   limits.max_rotor_thrust = v.MaxRotorThrust();
   limits.max_speed = v.max_speed;
   limits.yaw = 0.0;  // the flight holds the start's yaw, level at rest (FlyTrajectory)
+  if (setup.HasUnknown()) {
+    // boxes may appear: no faster than the vehicle can stop within what its sensor sees
+    const double margin =
+        0.5 * setup.vehicle.collision_size.maxCoeff() + setup.planning.trajectory_clearance;
+    params.max_speed =
+        std::min(params.max_speed, SensingSpeedLimit(setup.sensing, setup.replan,
+                                                     BrakingDeceleration(params.max_tilt), margin));
+  }
   if (setup.aero.Enabled()) {
     // the thrust also pays for the drag of the parts that are on, in the mean wind
     const DragModel drag = LumpedDrag(v);

@@ -1,5 +1,6 @@
 #include "mission/setup.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "scene/scene_mjcf.h"
@@ -20,6 +21,8 @@ void FlightSetup::Validate() const {
   controller.Validate();
   flight.Validate();
   wind.Validate();
+  sensing.Validate();
+  replan.Validate();
   PlannerCollision().Validate();
   TrajectoryCollision().Validate();
   planning.rrt.Validate();
@@ -32,6 +35,10 @@ void FlightSetup::Validate() const {
   if (planning.trajectory_method == "given" && planning.given_trajectory.size() < 2) {
     throw std::invalid_argument("trajectory method \"given\" needs a [trajectory] file");
   }
+}
+
+bool FlightSetup::HasUnknown() const {
+  return std::find(unknown.begin(), unknown.end(), true) != unknown.end();
 }
 
 void AddAirAndSensors(const FlightSetup& setup, FlightLoop* loop) {

@@ -13,6 +13,7 @@
 #include "map/map_reader.h"
 #include "mission/flight.h"
 #include "mission/planning_settings.h"
+#include "mission/replanning.h"
 #include "vehicle/quad_params.h"
 
 namespace aerobox {
@@ -39,6 +40,12 @@ struct FlightSetup {
   std::vector<Vec3> via;
   bool stop_at_goals = false;
   double hold = 0.0;  // [s]
+  // Boxes of `map` the planner does not know before take-off (one flag per box; empty: none),
+  // the sensor that reveals them and how the flight replans around them.
+  std::vector<bool> unknown;
+  SensingParams sensing;
+  ReplanParams replan;
+  bool HasUnknown() const;
   std::uint64_t seed = 1;
   PlanningSettings planning;
   std::string vehicle_kind = "tello";  // the built-in the vehicle started from ([vehicle] kind)

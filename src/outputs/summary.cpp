@@ -115,6 +115,23 @@ JsonObject RunSummary(const FlightSetup& setup, const MissionResult& result,
       summary.Add("goals", goals).Add("stop_at_goals", setup.stop_at_goals);
     }
   }
+  if (setup.HasUnknown()) {
+    // obstacles found in flight: how many, and every replan
+    summary.Add("unknown_boxes", result.unknown_boxes).Add("revealed_boxes", result.revealed_boxes);
+    std::vector<JsonObject> replans;
+    for (const ReplanEvent& e : result.replans) {
+      JsonObject r;
+      r.Add("t_s", e.t)
+          .Add("trigger", e.trigger)
+          .Add("outcome", e.outcome)
+          .Add("planning_time_s", e.planning_time)
+          .Add("solve_time_s", e.solve_time)
+          .Add("latency_s", e.latency)
+          .Add("path_length_m", e.path_length);
+      replans.push_back(r);
+    }
+    summary.Add("replans", replans);
+  }
   // the world it flew in: what was on
   JsonObject wind;
   AddPoint(&wind, "mean_mps", setup.wind.mean);

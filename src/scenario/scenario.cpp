@@ -678,6 +678,51 @@ void ReadSensors(const toml::table& table, const std::string& file, int table_li
   }
 }
 
+void ReadSensing(const toml::table& table, const std::string& file, SensingParams* sensing) {
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    const std::string field = "sensing." + name;
+    constexpr double kDegree = M_PI / 180.0;
+    if (name == "kind") {
+      const std::string kind = Text(node, file, field);
+      if (kind != "omni" && kind != "camera") {
+        throw InputError({file, LineOf(node)}, field, "expected \"omni\" or \"camera\"");
+      }
+      sensing->kind = kind == "camera" ? SensingParams::Kind::kCamera : SensingParams::Kind::kOmni;
+    } else if (name == "range") {
+      sensing->range = Number(node, file, field, 0.1, 1000);
+    } else if (name == "fov") {
+      sensing->fov_horizontal = Number(node, file, field, 1, 359) * kDegree;
+    } else if (name == "fov_vertical") {
+      sensing->fov_vertical = Number(node, file, field, 1, 179) * kDegree;
+    } else if (name == "rate") {
+      sensing->rate = Number(node, file, field, 0.1, 1000);
+    } else {
+      throw InputError({file, LineOf(node)}, field,
+                       "unknown key (expected kind, range, fov, fov_vertical or rate)");
+    }
+  }
+}
+
+void ReadReplan(const toml::table& table, const std::string& file, ReplanParams* replan) {
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    const std::string field = "replan." + name;
+    if (name == "horizon") {
+      replan->horizon = Number(node, file, field, 0, 5);
+    } else if (name == "iterations") {
+      replan->iterations = static_cast<long>(Number(node, file, field, 0, 1e7));
+    } else if (name == "time_budget") {
+      replan->time_budget = Number(node, file, field, 1e-3, 10);
+    } else if (name == "max_attempts") {
+      replan->max_attempts = static_cast<int>(Number(node, file, field, 1, 1e6));
+    } else {
+      throw InputError({file, LineOf(node)}, field,
+                       "unknown key (expected horizon, iterations, time_budget or max_attempts)");
+    }
+  }
+}
+
 Scenario ReadScenario(std::istream& in, const std::string& file) {
   std::ostringstream buffer;
   buffer << in.rdbuf();
@@ -734,6 +779,33 @@ Scenario ReadScenario(std::istream& in, const std::string& file) {
         }
       }
       scenario.goal_line = LineOf(node);
+    } else if (name == "unknown") {
+      const toml::array* indices = node.as_array();
+      if (indices == nullptr) {
+        throw InputError(where, name, "expected an array of box indices (from 0, in map order)");
+      }
+      for (size_t i = 0; i < indices->size(); ++i) {
+        const toml::value<int64_t>* index = (*indices)[i].as_integer();
+        if (index == nullptr || index->get() < 0 || index->get() > 1000000) {
+          throw InputError({file, LineOf((*indices)[i])}, "unknown[" + std::to_string(i) + "]",
+                           "expected a box index (an integer from 0)");
+        }
+        scenario.unknown.push_back(static_cast<int>(index->get()));
+      }
+      scenario.unknown_line = LineOf(node);
+    } else if (name == "unknown_fraction") {
+      scenario.unknown_fraction = Number(node, file, name, 0, 1);
+      scenario.unknown_line = LineOf(node);
+    } else if (name == "unknown_map") {
+      const std::optional<std::string> value = node.value<std::string>();
+      if (!value || value->empty()) throw InputError(where, name, "expected a file name");
+      scenario.unknown_map = (fs::path(file).parent_path() / *value).lexically_normal().string();
+      scenario.unknown_line = LineOf(node);
+    } else if (name == "sensing" || name == "replan") {
+      const toml::table* section = node.as_table();
+      if (section == nullptr) throw InputError(where, name, "expected a table [" + name + "]");
+      if (name == "sensing") ReadSensing(*section, file, &scenario.sensing);
+      if (name == "replan") ReadReplan(*section, file, &scenario.replan);
     } else if (name == "stop_at_goals") {
       scenario.stop_at_goals = Boolean(node, file, name);
     } else if (name == "hold") {
@@ -782,9 +854,9 @@ Scenario ReadScenario(std::istream& in, const std::string& file) {
     } else {
       throw InputError(where, name,
                        "unknown key (expected name, map, start, goal, goals, stop_at_goals, "
-                       "hold, seed, [planner], "
+                       "hold, unknown, unknown_fraction, unknown_map, seed, [planner], "
                        "[trajectory], [vehicle], [controller], [flight], [wind], [aero], "
-                       "[sensors] or [render])");
+                       "[sensors], [sensing], [replan] or [render])");
     }
   }
   // a missing key belongs to the top-level table, which starts at line 1
@@ -910,6 +982,39 @@ FlightSetup SetupFrom(const std::string& path, std::optional<Scenario> scenario,
   if (scenario) {
     setup.stop_at_goals = scenario->stop_at_goals;
     setup.hold = scenario->hold;
+    setup.sensing = scenario->sensing;
+    setup.replan = scenario->replan;
+    // boxes unknown to the planner: another map's boxes join the scene, unknown; then the
+    // listed indices and the seeded share of the map's own
+    const SourceLocation at{path, scenario->unknown_line};
+    const size_t own = setup.map.boxes.size();
+    if (!scenario->unknown_map.empty()) {
+      std::string text;
+      try {
+        text = ReadTextFile(scenario->unknown_map);
+      } catch (const InputError& e) {
+        throw InputError(at, "unknown_map", e.what());
+      }
+      std::istringstream in(text);
+      const Map extra = ReadMap(in, scenario->unknown_map,
+                                DetectMapFormat(scenario->unknown_map, text.substr(0, 64)));
+      for (Box box : extra.boxes) {
+        box.name = "unknown_" + box.name;
+        setup.map.boxes.push_back(box);
+      }
+    }
+    if (!scenario->unknown.empty() || scenario->unknown_fraction > 0 ||
+        setup.map.boxes.size() > own) {
+      Map own_boxes = setup.map;
+      own_boxes.boxes.resize(own);
+      try {
+        setup.unknown =
+            UnknownBoxes(own_boxes, scenario->unknown, scenario->unknown_fraction, setup.seed);
+      } catch (const std::invalid_argument& e) {
+        throw InputError(at, "unknown", e.what());
+      }
+      setup.unknown.resize(setup.map.boxes.size(), true);
+    }
   }
   if (setup.planning.trajectory_method == "given" && !setup.planning.given_trajectory.empty()) {
     // a given trajectory starts and ends where it does

@@ -35,6 +35,8 @@ namespace aerobox {
 //   [wind]                               # optional: mean, turbulence, intensity, gusts
 //   [aero]                               # optional: drag, body_drag, rotor_drag
 //   [sensors]                            # optional: imu, position, estimator
+//   unknown = [3, 7] | unknown_fraction = 0.3 | unknown_map = "more.txt"
+//   [sensing] [replan]                   # optional: the range sensor, replanning
 //   [render]                             # optional table (no keys defined yet)
 struct Scenario {
   std::string name;
@@ -50,6 +52,14 @@ struct Scenario {
   std::vector<Vec3> via;
   bool stop_at_goals = false;
   double hold = 0.0;  // [s]
+  // boxes unknown to the planner: map box indices, a seeded share of the map's boxes, or the
+  // boxes of another map file (added to the scene); [sensing] and [replan]
+  std::vector<int> unknown;
+  double unknown_fraction = 0.0;
+  std::string unknown_map;  // resolved against the scenario's folder
+  int unknown_line = 0;
+  SensingParams sensing;
+  ReplanParams replan;
   std::uint64_t seed = 1;
   PlanningSettings planning;
   std::string vehicle_kind = "tello";   // [vehicle] kind

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 #include <utility>
 
@@ -431,6 +432,7 @@ TrajectoryResult GenerateTrajectory(const std::vector<Vec3>& path, const Traject
 
 TrajectoryResult ContinueTrajectory(const StartState& start, const std::vector<Vec3>& path,
                                     const TrajectoryWorld& world, const TrajectoryParams& params) {
+  constexpr double kMaxContinuation = 600.0;  // [s]: longer is no continuation of a flight
   params.Validate();
   const auto begin = std::chrono::steady_clock::now();
   TrajectoryResult result;
@@ -450,32 +452,46 @@ TrajectoryResult ContinueTrajectory(const StartState& start, const std::vector<V
   problem.start_jerk = start.j_W;
   try {
     for (int round = 0;; ++round) {
-      problem.durations = TrapezoidDurationsAlongLegs(problem.waypoints, speed, accel);
-      // per segment: stretched (or shrunk) by what its own check asks, damped, until feasible
+      const std::vector<double> guess =
+          TrapezoidDurationsAlongLegs(problem.waypoints, speed, accel);
+      // a start in motion may want the first guess's times shorter or longer: several starts
+      // at a common factor, each with rounds of per-segment scaling (damped: the square root of
+      // what each segment's check asks, both ways)
       bool feasible = false;
-      for (int k = 0; k < 12 && !feasible; ++k) {
-        result.trajectory = SolveMinSnapClosedForm(problem);
-        if (!min_time) {
-          const double v = result.trajectory.MaxNorm(kVelocity, params.check_step) / speed;
-          const double a = result.trajectory.MaxNorm(kAcceleration, params.check_step) / accel;
-          const double scale = std::max(v, std::sqrt(a));
-          feasible = scale <= 1.0;
-          if (!feasible) {
-            for (double& t : problem.durations) t *= scale * 1.01;
+      for (const double factor : {1.0, 0.7, 1.4, 0.5, 2.0, 3.0}) {
+        problem.durations = guess;
+        for (double& t : problem.durations) t *= factor;
+        for (int k = 0; k < 8 && !feasible; ++k) {
+          result.trajectory = SolveMinSnapClosedForm(problem);
+          if (!min_time) {
+            const double v = result.trajectory.MaxNorm(kVelocity, params.check_step) / speed;
+            const double a = result.trajectory.MaxNorm(kAcceleration, params.check_step) / accel;
+            const double scale = std::max(v, std::sqrt(a));
+            feasible = scale <= 1.0;
+            if (!feasible) {
+              for (double& t : problem.durations) t *= scale * 1.01;
+            }
+            continue;
           }
-          continue;
+          const std::vector<FeasibilityCheck> checks =
+              CheckSegments(result.trajectory, limits, params.check_step);
+          feasible = WorstScale(checks) <= 1.0;
+          if (feasible) break;
+          for (size_t i = 0; i < checks.size(); ++i) {
+            if (checks[i].scale > 1.0) problem.durations[i] *= std::sqrt(checks[i].scale) * 1.02;
+          }
+          // a start too fast for the room ahead overshoots whatever the times: next start
+          if (std::accumulate(problem.durations.begin(), problem.durations.end(), 0.0) >
+              kMaxContinuation) {
+            break;
+          }
         }
-        const std::vector<FeasibilityCheck> checks =
-            CheckSegments(result.trajectory, limits, params.check_step);
-        feasible = WorstScale(checks) <= 1.0;
         if (feasible) break;
-        for (size_t i = 0; i < checks.size(); ++i) {
-          if (checks[i].scale > 1.0) problem.durations[i] *= std::sqrt(checks[i].scale) * 1.02;
-        }
       }
       if (!feasible) {
         result.status = TrajectoryStatus::kInfeasible;
-        result.stats.solver_message = "no feasible times within 12 rounds";
+        result.stats.solver_message = "no feasible times from six starts";
+        result.trajectory = PiecewiseTrajectory();
         break;
       }
       result.stats.solver_message = "closed form, continuing";

@@ -1,0 +1,133 @@
+// Obstacles discovered in flight: boxes the planner does not know, a range sensor that reveals
+// them, and replanning when a revealed box blocks the rest of the trajectory. MuJoCo has every
+// box from the start, so a box seen too late is a real collision.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/collision_world.h"
+#include "map/map.h"
+#include "mission/flight.h"
+#include "planning/rrt_star.h"
+#include "trajectory/trajectory_generator.h"
+
+namespace aerobox {
+
+// The range sensor that reveals boxes: a box is revealed when any part of it is within range
+// (omnidirectional) or within range and the field of view around the body's x axis (a depth
+// camera), at the sensor's rate. Nothing occludes (a box behind another is seen too).
+struct SensingParams {
+  enum class Kind { kOmni, kCamera };
+  Kind kind = Kind::kOmni;
+  double range = 3.0;              // [m]
+  double fov_horizontal = 1.5184;  // [rad] 87 deg (an Intel RealSense D435's depth field)
+  double fov_vertical = 1.0123;    // [rad] 58 deg
+  double rate = 30.0;              // [Hz] divides the physics rate
+
+  void Validate() const;  // throws std::invalid_argument naming the field
+};
+
+// Replanning in flight: from the reference `horizon` seconds ahead of the vehicle, RRT* per leg
+// (`iterations` after its first solution, so that the same seed replans the same; at most
+// `time_budget` of wall time), then a trajectory that continues the reference's state.
+struct ReplanParams {
+  double horizon = 0.3;      // [s]
+  long iterations = 300;     // RRT* iterations after the first solution, per leg
+  double time_budget = 0.1;  // [s] of wall time per leg, at most
+  int max_attempts = 50;     // attempts while braked before the flight gives up
+
+  void Validate() const;
+};
+
+// One replan: when, what triggered it, how long it took, what came of it.
+struct ReplanEvent {
+  double t = 0.0;               // [s] of flight when the blocking box was found
+  std::string trigger;          // the box that blocked the trajectory (its map name)
+  double planning_time = 0.0;   // [s] wall, RRT*
+  double solve_time = 0.0;      // [s] wall, the trajectory
+  double latency = 0.0;         // [s] wall, trigger to the new trajectory ready
+  double path_length = 0.0;     // [m] of the new path
+  std::string outcome;          // "replanned", "braking", "no path", ...
+  std::vector<Vec3> abandoned;  // the rest of the path given up [m]
+};
+
+// The deceleration a braking vehicle may count on [m/s^2]: 60 % of what its tilt limit gives,
+// the rest kept for the controller.
+double BrakingDeceleration(double max_tilt);
+
+// The fastest a vehicle may fly and still stop before a box its sensor has just revealed [m/s]:
+// v^2 / (2 a) + v tau = range - margin, with tau the sensor's period, the replanning horizon and
+// 0.1 s for the replan itself, a the braking deceleration and margin the vehicle's half size and
+// clearance.
+double SensingSpeedLimit(const SensingParams& sensing, const ReplanParams& replan,
+                         double deceleration, double margin);
+
+// Which of a map's boxes are unknown: the listed indices, or a seeded draw of `fraction` of
+// them (rounded); throws std::invalid_argument for an index outside the map.
+std::vector<bool> UnknownBoxes(const Map& map, const std::vector<int>& indices, double fraction,
+                               std::uint64_t seed);
+
+// The map without its unknown boxes: what the planner knows before take-off.
+Map KnownMap(const Map& map, const std::vector<bool>& unknown);
+
+// True when the sensor at `state` sees any part of `box` [m].
+bool SeesBox(const SensingParams& sensing, const State& state, const Aabb& box);
+
+// The loop's reference updater (FlightLoop::update_reference): senses at its rate, and when a
+// newly revealed box blocks the reference's rest, plans and splices a continuation, or brakes
+// and keeps trying.
+class Replanner {
+ public:
+  // `planning` and `trajectory`: the collision parameters of the planner and of trajectories;
+  // `rrt` and `params` as the flight's planning uses them; `goals`: the mission's goals in
+  // order, the last one where the reference ends; `path`: the planned path the reference flies.
+  // A blocked path is repaired locally first: RRT* from the vehicle's state to the first point
+  // of the path beyond the blocked stretch from which the rest is free, then the rest; only
+  // when that fails, RRT* through all the goals still ahead.
+  Replanner(const Map& map, const std::vector<bool>& unknown, const CollisionParams& planning,
+            const CollisionParams& trajectory, const RrtStarParams& rrt,
+            const TrajectoryParams& params, const SensingParams& sensing,
+            const ReplanParams& replan, std::vector<Vec3> goals, std::vector<Vec3> path,
+            std::uint64_t seed);
+
+  // Called at each control step with the reference's time, the vehicle's state (as the
+  // controller sees it), how many goals it has reached and the current reference; returns a
+  // new reference when it replanned.
+  std::optional<Reference> Update(double t, double tr, const State& state, int goals_reached,
+                                  const Reference& current);
+
+  const std::vector<ReplanEvent>& events() const { return events_; }
+  // [s] of flight when each box was revealed (negative: known from the start or never seen)
+  const std::vector<double>& revealed_at() const { return revealed_at_; }
+  int unknown_count() const;
+  int revealed_count() const;
+
+ private:
+  std::optional<Reference> Replan(double t, double tr, int goals_reached, const Reference& current,
+                                  const std::string& trigger);
+
+  Map map_;
+  std::vector<bool> unknown_;
+  std::vector<bool> known_;
+  CollisionParams planning_;
+  CollisionParams trajectory_;
+  RrtStarParams rrt_;
+  TrajectoryParams params_;
+  SensingParams sensing_;
+  ReplanParams replan_;
+  std::vector<Vec3> goals_;
+  std::vector<Vec3> path_;  // the path the reference flies, updated with each replan
+  std::uint64_t seed_;
+  std::vector<double> revealed_at_;
+  std::optional<CollisionWorld> planner_world_, trajectory_world_;
+  double next_sense_ = 0.0;
+  bool braking_ = false;  // the last attempt found nothing: the reference brakes to a stop
+  int attempts_ = 0;
+  std::vector<ReplanEvent> events_;
+  void Rebuild();
+};
+
+}  // namespace aerobox
