@@ -14,6 +14,7 @@
 #include "bench/planner_comparison.h"
 #include "bench/python_benchmark.h"
 #include "bench/render_benchmark.h"
+#include "bench/replanning_benchmark.h"
 #include "bench/robustness.h"
 #include "bench/solver_comparison.h"
 #include "common/error.h"
@@ -127,6 +128,18 @@ int RunBench(const std::string& sections, const std::string& scenes, const std::
     RobustnessTable(params, out, err);
     out << "\n";
   }
+  if (wanted("replanning")) {
+    std::vector<std::string> scenarios;
+    std::istringstream list(maps);
+    std::string map;
+    while (std::getline(list, map, ',')) {
+      scenarios.push_back((std::filesystem::path(scenes) / map / "scenario.toml").string());
+    }
+    out << "## Replanning: 30 % of each map's boxes unknown until seen, " << seeds
+        << " seeds per map\n\n";
+    ReplanningTable(scenarios, seeds, 0.3, out, err);
+    out << "\n";
+  }
   if (wanted("city")) {
     out << "## City scale: the FCND map, 50 queries 600-700 m apart\n\n";
     if (city.empty()) {
@@ -167,8 +180,10 @@ int main(int argc, char** argv) {
   std::string bench_maps = "window,maze,forest,over_under";
   int bench_seeds = 20;
   double bench_seconds = 1.0;
-  app.add_option("--sections", bench_sections,
-                 "all, or some of: trajectory,flight,render,speed,python,robustness,city,planning")
+  app.add_option(
+         "--sections", bench_sections,
+         "all, or some of: trajectory,flight,render,speed,python,robustness,replanning,city,"
+         "planning")
       ->capture_default_str();
   app.add_option("--scenes", bench_scenes, "folder with the scenes")->capture_default_str();
   app.add_option("--maps", bench_maps, "comma-separated scene names")->capture_default_str();

@@ -400,4 +400,34 @@ TEST_CASE("goals: a mission's keys, and the command line's goals replace the sce
         "scenes/x/scenario.toml:2: hold: expected a number from 0 to 600");
 }
 
+TEST_CASE("unknown boxes, [sensing] and [replan]: the keys and their errors") {
+  const TempDir dir;
+  dir.Write("m.json", kMapJson);
+  dir.Write("more.txt", "boundary 0 0 0 10 10 3\nblock 7 7 0 8 8 3\n");
+  const std::string file = (dir.path() / "s.toml").string();
+  const FlightSetup setup = LoadFlightSetupFromText(
+      "map = \"m.json\"\nunknown = [0]\nunknown_map = \"more.txt\"\n[sensing]\n"
+      "kind = \"camera\"\nrange = 5\nfov = 90\n[replan]\nhorizon = 0.2\n",
+      file, {});
+  REQUIRE(setup.map.boxes.size() == 2);  // the map's one and the other file's
+  CHECK(setup.unknown == std::vector<bool>{true, true});
+  CHECK(setup.map.boxes[1].name.rfind("unknown_", 0) == 0);
+  CHECK(setup.sensing.kind == SensingParams::Kind::kCamera);
+  CHECK(setup.sensing.range == 5.0);
+  CHECK(setup.sensing.fov_horizontal == doctest::Approx(M_PI / 2));
+  CHECK(setup.replan.horizon == 0.2);
+  CHECK_THROWS_WITH_AS(LoadFlightSetupFromText("map = \"m.json\"\nunknown = [4]\n", file, {}),
+                       doctest::Contains("s.toml:2: unknown: unknown: box 4 is not in the map"),
+                       InputError);
+  CHECK(ScenarioError("map = \"m.txt\"\nunknown = [-1]\n") ==
+        "scenes/x/scenario.toml:2: unknown[0]: expected a box index (an integer from 0)");
+  CHECK(ScenarioError("map = \"m.txt\"\nunknown_fraction = 2\n") ==
+        "scenes/x/scenario.toml:2: unknown_fraction: expected a number from 0 to 1");
+  CHECK(ScenarioError("map = \"m.txt\"\n[sensing]\nkind = \"lidar\"\n") ==
+        "scenes/x/scenario.toml:3: sensing.kind: expected \"omni\" or \"camera\"");
+  CHECK(ScenarioError("map = \"m.txt\"\n[replan]\nlookahead = 1\n") ==
+        "scenes/x/scenario.toml:3: replan.lookahead: unknown key (expected horizon, iterations, "
+        "time_budget or max_attempts)");
+}
+
 }  // namespace aerobox

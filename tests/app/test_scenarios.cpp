@@ -120,6 +120,19 @@ TEST_CASE("scenario maze_mission: three goals in one trajectory") {
   CHECK(flight.out.find("goals       3 of 3 reached") != std::string::npos);
 }
 
+// 30 % of the maze's walls unknown until the range sensor sees them: the flight replans around
+// the one that blocks its path and arrives without contact.
+TEST_CASE("scenario maze_unknown: walls found in flight, replanned around") {
+  const Flight flight = CheckSuccess(Scene("maze_unknown"));
+  CHECK(testing::SummaryNumber(flight.summary, "unknown_boxes") == 5);
+  CHECK(testing::SummaryNumber(flight.summary, "revealed_boxes") >= 1);
+  REQUIRE(flight.summary["replans"].size() >= 1);
+  const nlohmann::json& replan = flight.summary["replans"][0];
+  CHECK(replan["outcome"].get<std::string>().find("replanned") != std::string::npos);
+  CHECK(replan["path_length_m"].get<double>() > 0);
+  CHECK(flight.out.find("discovery") != std::string::npos);
+}
+
 TEST_CASE("scenario impossible: exit 3, no path") {
   const Flight flight = Fly(Scene("impossible"));
   CHECK(flight.code == kExitNoPath);

@@ -1,0 +1,106 @@
+// Obstacles discovered in flight: which boxes are unknown, what the sensor sees, and a flight
+// that replans around a wall it did not know.
+#include <doctest/doctest.h>
+
+#include <stdexcept>
+
+#include "mission/mission.h"
+#include "mission/replanning.h"
+
+namespace aerobox {
+namespace {
+
+Map Room(bool with_wall) {
+  Map map;
+  map.name = "room";
+  map.bounds = {Vec3(0, 0, 0), Vec3(12, 8, 3)};
+  if (with_wall)
+    map.boxes.push_back({{Vec3(5.5, 0, 0), Vec3(6, 5.5, 3)}, Vec3(1, 0, 0), "wall", 1});
+  map.boxes.push_back({{Vec3(9, 6.5, 0), Vec3(10, 8, 3)}, Vec3(0, 1, 0), "corner", 2});
+  return map;
+}
+
+FlightSetup RoomSetup(std::uint64_t seed) {
+  FlightSetup setup;
+  setup.name = "room";
+  setup.map = Room(true);
+  setup.start = Vec3(1, 2, 1);
+  setup.start_origin = "test";
+  setup.goal = Vec3(11, 2, 1);
+  setup.goal_origin = "test";
+  setup.seed = seed;
+  setup.unknown = {true, false};  // the wall across the way
+  return setup;
+}
+
+}  // namespace
+
+TEST_CASE("unknown boxes: by index, by a seeded share, and the map the planner knows") {
+  Map map = Room(true);
+  for (int i = 0; i < 8; ++i) map.boxes.push_back(map.boxes[1]);
+  CHECK(UnknownBoxes(map, {0, 3}, 0.0, 1) ==
+        std::vector<bool>{true, false, false, true, false, false, false, false, false, false});
+  const std::vector<bool> a = UnknownBoxes(map, {}, 0.3, 7);
+  CHECK(std::count(a.begin(), a.end(), true) == 3);
+  CHECK(a == UnknownBoxes(map, {}, 0.3, 7));  // the same seed, the same boxes
+  bool differs = false;
+  for (std::uint64_t seed = 8; seed < 20 && !differs; ++seed) {
+    differs = UnknownBoxes(map, {}, 0.3, seed) != a;
+  }
+  CHECK(differs);
+  CHECK_THROWS_AS(UnknownBoxes(map, {10}, 0.0, 1), std::invalid_argument);
+  CHECK(KnownMap(map, a).boxes.size() == 7);
+}
+
+TEST_CASE("the range sensor sees a box in range, the camera only in its field of view") {
+  const Aabb box{Vec3(2, -0.5, 0), Vec3(3, 0.5, 2)};
+  State s;
+  s.p_W = Vec3(0, 0, 1);
+  SensingParams omni;
+  omni.range = 3.0;
+  CHECK(SeesBox(omni, s, box));  // its near face is 2 m away
+  omni.range = 1.5;
+  CHECK_FALSE(SeesBox(omni, s, box));
+  SensingParams camera;
+  camera.kind = SensingParams::Kind::kCamera;
+  camera.range = 3.0;
+  CHECK(SeesBox(camera, s, box));                         // straight ahead
+  s.q_WB = Quat(Eigen::AngleAxisd(M_PI, Vec3::UnitZ()));  // facing away
+  CHECK_FALSE(SeesBox(camera, s, box));
+  s.q_WB = Quat(Eigen::AngleAxisd(0.6, Vec3::UnitZ()));  // 34 degrees off: the box's edge in view
+  CHECK(SeesBox(camera, s, box));
+}
+
+TEST_CASE("a wall the planner did not know is seen, flown around, and the same seed repeats") {
+  const MissionResult first = RunMission(RoomSetup(3), MissionParts());
+  CAPTURE(ToString(first.flight.status));
+  REQUIRE(first.status == MissionStatus::kReachedGoal);
+  CHECK(first.flight.status == FlightStatus::kReachedGoal);  // no contact on the way
+  CHECK(first.unknown_boxes == 1);
+  CHECK(first.revealed_boxes == 1);
+  REQUIRE_FALSE(first.replans.empty());
+  CHECK(first.replans.front().trigger == "wall");
+  for (const ReplanEvent& e : first.replans)
+    MESSAGE(e.t << " s " << e.trigger << ": " << e.outcome);
+  // at once, or after braking when no continuation was found in time
+  CHECK(first.replans.back().outcome.find("replanned") != std::string::npos);
+  CHECK(first.replans.back().path_length > 8.0);  // around the wall, not through it
+  CHECK_FALSE(first.replans.front().abandoned.empty());
+  CHECK(first.flight.replans == static_cast<int>(first.replans.size()));
+  // the planned path went through the wall: the planner did not know it
+  bool through = false;
+  for (const Vec3& p : first.plan.result.path) through |= p.y() < 5.5 && p.x() > 5 && p.x() < 6.5;
+  CHECK((through || first.plan.result.path.size() == 2));
+  const MissionResult again = RunMission(RoomSetup(3), MissionParts());
+  REQUIRE(again.replans.size() == first.replans.size());
+  CHECK(again.revealed_at == first.revealed_at);
+  CHECK(again.flight.time == first.flight.time);
+  // known from the start: nothing to replan
+  FlightSetup known = RoomSetup(3);
+  known.unknown.clear();
+  const MissionResult plain = RunMission(known, MissionParts());
+  CHECK(plain.status == MissionStatus::kReachedGoal);
+  CHECK(plain.replans.empty());
+}
+
+}  // namespace aerobox
