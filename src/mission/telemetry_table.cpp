@@ -12,8 +12,8 @@ constexpr int kSensorColumns = 22;
 }  // namespace
 
 TelemetryExtras TelemetryExtrasFor(const FlightSetup& setup) {
-  return {setup.wind.Enabled() || setup.aero.Enabled(), setup.sensors.Enabled(),
-          !setup.via.empty()};
+  return {setup.wind.Enabled() || setup.aero.Enabled(), setup.sensors.Enabled(), !setup.via.empty(),
+          setup.HasUnknown()};
 }
 
 CsvTable TelemetryTable(const std::vector<std::string>& controller_columns,
@@ -26,6 +26,7 @@ CsvTable TelemetryTable(const std::vector<std::string>& controller_columns,
       "tau_x", "tau_y",  "tau_z",  "f1_cmd",  "f2_cmd",     "f3_cmd", "f4_cmd", "clearance"};
   columns.insert(columns.end(), controller_columns.begin(), controller_columns.end());
   if (extras.goals) columns.push_back("goal_index");
+  if (extras.replans) columns.push_back("replans");
   if (extras.air) {
     columns.insert(columns.end(), {"wind_x", "wind_y", "wind_z", "drag_x", "drag_y", "drag_z"});
   }
@@ -41,7 +42,7 @@ CsvTable TelemetryTable(const std::vector<std::string>& controller_columns,
 
 void AddTelemetryRow(const TelemetrySample& s, CsvTable* table, const TelemetryExtras& extras) {
   const int controller = static_cast<int>(s.report.size());
-  const int size = kFixedColumns + controller + (extras.goals ? 1 : 0) +
+  const int size = kFixedColumns + controller + (extras.goals ? 1 : 0) + (extras.replans ? 1 : 0) +
                    (extras.air ? kAirColumns : 0) + (extras.sensors ? kSensorColumns : 0);
   Eigen::VectorXd row(size);
   const Quat& q = s.state.q_WB;
@@ -52,6 +53,7 @@ void AddTelemetryRow(const TelemetrySample& s, CsvTable* table, const TelemetryE
   for (int i = 0; i < controller; ++i) row[kFixedColumns + i] = s.report[i];
   int at = kFixedColumns + controller;
   if (extras.goals) row[at++] = s.goal_index;
+  if (extras.replans) row[at++] = s.replans;
   if (extras.air) {
     row.segment<kAirColumns>(at) << s.wind_W, s.aero_force_W;
     at += kAirColumns;

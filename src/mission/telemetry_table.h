@@ -17,6 +17,7 @@ struct TelemetryExtras {
   bool air = false;      // wind_x..z [m/s], drag_x..z [N]
   bool sensors = false;  // est_*, imu_*, meas_* (README: telemetry columns)
   bool goals = false;    // goal_index: a mission through several goals
+  bool replans = false;  // replans: unknown boxes, replanned around in flight
 };
 TelemetryExtras TelemetryExtrasFor(const FlightSetup& setup);
 
