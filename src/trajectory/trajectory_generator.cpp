@@ -302,6 +302,34 @@ std::optional<double> FirstCollisionTime(const PiecewiseTrajectory& trajectory,
   return std::nullopt;
 }
 
+namespace {
+
+// One round of collision-aware refinement: true (with the status set) when result->trajectory
+// stays free or the rounds are spent; otherwise the segment that first leaves free space gets
+// its midpoint and false.
+bool Refine(const TrajectoryWorld& world, const TrajectoryParams& params, int round,
+            std::vector<Vec3>* waypoints, TrajectoryResult* result) {
+  const std::optional<double> hit =
+      FirstCollisionTime(result->trajectory, world, params.check_step);
+  if (!hit) {
+    result->status = TrajectoryStatus::kSolved;
+    return true;
+  }
+  if (round >= params.max_refinements) {
+    result->status = TrajectoryStatus::kCollides;
+    return true;
+  }
+  const std::vector<double> knots = result->trajectory.KnotTimes();
+  size_t segment = 0;
+  while (segment + 2 < knots.size() && knots[segment + 1] < *hit) ++segment;
+  std::vector<Vec3>& w = *waypoints;
+  w.insert(w.begin() + static_cast<long>(segment) + 1, 0.5 * (w[segment] + w[segment + 1]));
+  ++result->stats.refinements;
+  return false;
+}
+
+}  // namespace
+
 TrajectoryResult GenerateTrajectory(const std::vector<Vec3>& path, const TrajectoryWorld& world,
                                     const TrajectoryParams& params) {
   params.Validate();
@@ -401,22 +429,7 @@ TrajectoryResult GenerateTrajectory(const std::vector<Vec3>& path, const Traject
       }
 
       // collision-aware refinement: the segment that leaves free space gets its midpoint
-      const std::optional<double> hit =
-          FirstCollisionTime(result.trajectory, world, params.check_step);
-      if (!hit) {
-        result.status = TrajectoryStatus::kSolved;
-        break;
-      }
-      if (round >= params.max_refinements) {
-        result.status = TrajectoryStatus::kCollides;
-        break;
-      }
-      const std::vector<double> knots = result.trajectory.KnotTimes();
-      size_t segment = 0;
-      while (segment + 2 < knots.size() && knots[segment + 1] < *hit) ++segment;
-      waypoints.insert(waypoints.begin() + static_cast<long>(segment) + 1,
-                       0.5 * (waypoints[segment] + waypoints[segment + 1]));
-      ++result.stats.refinements;
+      if (Refine(world, params, round, &waypoints, &result)) break;
     }
   } catch (const SingularSystem& e) {
     result.status = TrajectoryStatus::kFailed;
@@ -495,22 +508,7 @@ TrajectoryResult ContinueTrajectory(const StartState& start, const std::vector<V
         break;
       }
       result.stats.solver_message = "closed form, continuing";
-      const std::optional<double> hit =
-          FirstCollisionTime(result.trajectory, world, params.check_step);
-      if (!hit) {
-        result.status = TrajectoryStatus::kSolved;
-        break;
-      }
-      if (round >= params.max_refinements) {
-        result.status = TrajectoryStatus::kCollides;
-        break;
-      }
-      const std::vector<double> knots = result.trajectory.KnotTimes();
-      size_t segment = 0;
-      while (segment + 2 < knots.size() && knots[segment + 1] < *hit) ++segment;
-      std::vector<Vec3>& w = problem.waypoints;
-      w.insert(w.begin() + static_cast<long>(segment) + 1, 0.5 * (w[segment] + w[segment + 1]));
-      ++result.stats.refinements;
+      if (Refine(world, params, round, &problem.waypoints, &result)) break;
     }
   } catch (const SingularSystem& e) {
     result.status = TrajectoryStatus::kFailed;

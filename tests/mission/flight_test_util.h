@@ -4,11 +4,18 @@
 
 #include <cmath>
 #include <functional>
+#include <vector>
 
 #include "mission/flight.h"
 #include "scene/scene_mjcf.h"
 
 namespace aerobox::testing {
+
+// A flight's result and its telemetry, one sample per control step.
+struct Track {
+  FlightResult result;
+  std::vector<TelemetrySample> samples;
+};
 
 // An empty 20 x 20 x 6 m room with the vehicle at rest at `start` (rotors at hover thrust).
 inline Simulation RoomAt(const Vec3& start, const Map& extra = Map(),

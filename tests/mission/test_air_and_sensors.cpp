@@ -17,11 +17,7 @@ using testing::Eight;
 using testing::EightDuration;
 using testing::FromFunction;
 using testing::RoomAt;
-
-struct Track {
-  FlightResult result;
-  std::vector<TelemetrySample> samples;
-};
+using testing::Track;
 
 // The figure-8 (or `reference`) with the cascade, with the loop's air and sensors set by `set`.
 template <typename Setter>

@@ -27,11 +27,7 @@ using testing::Eight;
 using testing::EightDuration;
 using testing::FromFunction;
 using testing::RoomAt;
-
-struct Track {
-  FlightResult result;
-  std::vector<TelemetrySample> samples;
-};
+using testing::Track;
 
 Track Fly(const Reference& reference, Simulation* sim, Controller* controller, double rate,
           const QuadParams& vehicle = QuadParams()) {

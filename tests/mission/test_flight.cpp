@@ -14,11 +14,7 @@ namespace {
 using testing::FromFunction;
 using testing::RampedPhase;
 using testing::RoomAt;
-
-struct Track {
-  FlightResult result;
-  std::vector<TelemetrySample> samples;
-};
+using testing::Track;
 
 Track Fly(const Reference& reference, Simulation* sim, FlightParams params = FlightParams()) {
   Track track;
