@@ -7,34 +7,21 @@ Usage: tools/plot_robustness.py robustness.csv [robustness.png]
 (default output: robustness.png beside the CSV). Needs Debian's python3-pandas and
 python3-matplotlib (tools/setup.sh installs them).
 """
-import os
 import sys
 
 import matplotlib
 
 matplotlib.use("Agg")  # headless
 import matplotlib.pyplot as plt  # noqa: E402
-import pandas as pd  # noqa: E402
+from plot_input import read_input  # noqa: E402
 
 
 def main(argv):
-    if len(argv) not in (2, 3) or argv[1] in ("-h", "--help"):
-        print(__doc__.strip(), file=sys.stderr)
-        return 2
-    source = argv[1]
-    target = argv[2] if len(argv) == 3 else os.path.join(os.path.dirname(source),
-                                                         "robustness.png")
-    try:
-        data = pd.read_csv(source)
-    except (OSError, pd.errors.ParserError, pd.errors.EmptyDataError) as error:
-        print(f"plot_robustness: {source}: {error}", file=sys.stderr)
-        return 2
-    needed = ["map", "wind_mps", "seed", "status", "tracking_rms_m"]
-    missing = [c for c in needed if c not in data.columns]
-    if missing or data.empty:
-        print(f"plot_robustness: {source}: not a robustness file "
-              f"(missing {', '.join(missing) or 'rows'})", file=sys.stderr)
-        return 2
+    data, target = read_input(argv, __doc__, "plot_robustness", "robustness.png",
+                              ["map", "wind_mps", "seed", "status", "tracking_rms_m"],
+                              "a robustness file")
+    if data is None:
+        return target
 
     figure, (rms_axis, rate_axis) = plt.subplots(1, 2, figsize=(12, 4.5))
     maps = list(dict.fromkeys(data["map"]))

@@ -13,27 +13,16 @@ import matplotlib
 
 matplotlib.use("Agg")  # headless
 import matplotlib.pyplot as plt  # noqa: E402
-import pandas as pd  # noqa: E402
+from plot_input import read_input  # noqa: E402
 
 
 def main(argv):
-    if len(argv) not in (2, 3) or argv[1] in ("-h", "--help"):
-        print(__doc__.strip(), file=sys.stderr)
-        return 2
-    source = argv[1]
-    target = argv[2] if len(argv) == 3 else os.path.join(os.path.dirname(source), "plots.png")
-    try:
-        data = pd.read_csv(source)
-    except (OSError, pd.errors.ParserError, pd.errors.EmptyDataError) as error:
-        print(f"plot_telemetry: {source}: {error}", file=sys.stderr)
-        return 2
     needed = ["t", "x", "y", "z", "x_des", "y_des", "z_des", "vx", "vy", "vz", "pos_err",
               "f1", "f2", "f3", "f4"]
-    missing = [c for c in needed if c not in data.columns]
-    if missing or data.empty:
-        print(f"plot_telemetry: {source}: not an aerobox telemetry file "
-              f"(missing {', '.join(missing) or 'rows'})", file=sys.stderr)
-        return 2
+    data, target = read_input(argv, __doc__, "plot_telemetry", "plots.png", needed,
+                              "an aerobox telemetry file")
+    if data is None:
+        return target
 
     t = data["t"]
     figure, axes = plt.subplots(3, 2, figsize=(12, 9), sharex=True)
@@ -54,7 +43,7 @@ def main(argv):
     for axis in axes[-1]:
         axis.set_xlabel("time [s]")
     rms = 100 * (data["pos_err"] ** 2).mean() ** 0.5
-    figure.suptitle(f"{os.path.basename(os.path.dirname(os.path.abspath(source)))}: "
+    figure.suptitle(f"{os.path.basename(os.path.dirname(os.path.abspath(argv[1])))}: "
                     f"tracking RMS {rms:.1f} cm, max {100 * data['pos_err'].max():.1f} cm")
     figure.tight_layout()
     partial = target + ".partial.png"
