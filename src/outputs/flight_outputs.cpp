@@ -17,6 +17,7 @@ namespace {
 
 constexpr double kTreeIntro = 3.0;        // [s] of video in which the RRT* tree grows
 constexpr size_t kTelemetryBlock = 1000;  // rows (4 s of flight at 250 Hz) appended at once
+constexpr float kUnseenAlpha = 0.2f;      // an unknown box before the sensor sees it
 
 std::string Hud(double t, const State& state, double floor, const char* status,
                 const std::optional<Vec3>& wind = std::nullopt) {
@@ -90,6 +91,28 @@ void RenderOutputs::OnScene(Simulation& sim, const std::vector<bool>& kept) {
     throw InputError({"command line", 0}, "--size", e.what());
   }
   renderer_->ReleaseFromThread();  // the flight renders from the main thread
+  // boxes the planner does not know: faint until the vehicle's sensor reveals them
+  sim_ = &sim;
+  unknown_geoms_.assign(setup_.map.boxes.size(), -1);
+  for (size_t i = 0; i < setup_.unknown.size() && i < setup_.map.boxes.size(); ++i) {
+    if (!setup_.unknown[i]) continue;
+    const int id = mj_name2id(sim.model(), mjOBJ_GEOM, setup_.map.boxes[i].name.c_str());
+    unknown_geoms_[i] = id;
+    if (id >= 0) sim.mutable_model()->geom_rgba[4 * id + 3] = kUnseenAlpha;
+  }
+}
+
+void RenderOutputs::OnDiscovery(const std::vector<double>& revealed_at,
+                                const std::vector<ReplanEvent>& replans) {
+  if (sim_ == nullptr) return;
+  for (size_t i = 0; i < revealed_at.size() && i < unknown_geoms_.size(); ++i) {
+    if (unknown_geoms_[i] >= 0 && revealed_at[i] >= 0) {
+      sim_->mutable_model()->geom_rgba[4 * unknown_geoms_[i] + 3] = 1.0f;  // seen
+    }
+  }
+  for (; replans_drawn_ < replans.size(); ++replans_drawn_) {
+    overlay_.abandoned.push_back(replans[replans_drawn_].abandoned);
+  }
 }
 
 void RenderOutputs::OnPlan(const PlanOutcome& plan) {
@@ -185,8 +208,10 @@ void RenderOutputs::OnFlightEnd(const Simulation& sim, const FlightResult& resul
   Overlay overview = overlay_;
   overview.top_inset = true;
   overview.legend =
-      "yellow: path   blue-red: trajectory, slow-fast\n"
-      "black: flown   green: start   red: goal   inset: from above";
+      std::string(
+          "yellow: path   blue-red: trajectory, slow-fast\n"
+          "black: flown   green: start   red: goal   inset: from above") +
+      (setup_.HasUnknown() ? "\nfaint: never seen   grey: paths given up when replanning" : "");
   Frame(Hud(result.time, sim.VehicleState(), setup_.map.bounds.min.z(), ToString(result.status)),
         {CameraKind::kOverview, ""}, overview);
   WriteFileAtomically((fs::path(folder_) / "overview.png").string(), EncodePng(image_));

@@ -80,6 +80,9 @@ class RenderOutputs : public MissionObserver {
   void OnFlightStart(const Simulation&, const Controller&) override;
   void OnSample(const TelemetrySample& sample) override;
   void OnFlightEnd(const Simulation& sim, const FlightResult& result) override;
+  // unknown boxes drawn faint until revealed; the paths replanning gave up, in grey
+  void OnDiscovery(const std::vector<double>& revealed_at,
+                   const std::vector<ReplanEvent>& replans) override;
 
   int video_frames() const { return frames_; }
 
@@ -98,6 +101,9 @@ class RenderOutputs : public MissionObserver {
   double next_png_ = 0.0;
   int frames_ = 0;
   int png_frames_ = 0;
+  Simulation* sim_ = nullptr;
+  std::vector<int> unknown_geoms_;  // the scene's geom of each unknown box (-1: not in it)
+  size_t replans_drawn_ = 0;
 };
 
 // A progress line on a terminal: frames, frames per second, flight time and time left.

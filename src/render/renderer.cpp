@@ -110,6 +110,8 @@ struct Renderer::Impl {
       const float rgba[4] = {static_cast<float>(v), 0.2f, static_cast<float>(1.0 - v), 1.0f};
       AddLine(overlay.trajectory[kept[i - 1]], overlay.trajectory[kept[i]], rgba, 3.0);
     }
+    static const float kAbandoned[4] = {0.55f, 0.55f, 0.55f, 0.8f};
+    for (const std::vector<Vec3>& path : overlay.abandoned) AddPolyline(path, kAbandoned, 2.0);
     AddPolyline(overlay.trail, kTrail, 2.0);
     if (overlay.wind_W && overlay.wind_W->norm() > 0.05) {
       static const float kWind[4] = {0.1f, 0.8f, 0.9f, 0.9f};

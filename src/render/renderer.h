@@ -52,6 +52,7 @@ struct Overlay {
   std::vector<Vec3> trajectory;  // samples of the trajectory [m] ...
   std::vector<double> speeds;    // ... and the speed at each [m/s] (colour: blue slow, red fast)
   std::vector<Vec3> trail;       // where the vehicle has been [m]
+  std::vector<std::vector<Vec3>> abandoned;  // paths given up when replanning [m], in grey
   std::optional<Vec3> start;
   std::optional<Vec3> goal;
   std::vector<Vec3> via;  // a mission's goals before the last, drawn as the goal is
