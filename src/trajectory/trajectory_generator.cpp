@@ -452,6 +452,7 @@ TrajectoryResult ContinueTrajectory(const StartState& start, const std::vector<V
   if (path.size() < 2) throw std::invalid_argument("ContinueTrajectory: path too short");
   const bool min_time = params.objective == TimeObjective::kMinTime && params.vehicle.valid();
   const FlatnessLimits limits = min_time ? EffectiveLimits(params) : FlatnessLimits();
+  const double search_step = std::max(params.check_step, 0.025);  // [s]
   // the times' first guess: each leg's trapezoid at the speed and acceleration the vehicle
   // reaches (the start's own speed makes the first leg no slower than from rest)
   const double speed = min_time ? std::min(limits.max_speed, params.max_speed) : params.max_speed;
@@ -486,12 +487,16 @@ TrajectoryResult ContinueTrajectory(const StartState& start, const std::vector<V
             }
             continue;
           }
+          // searched on coarser samples (a replan's latency is mostly this), confirmed on the
+          // check step
           const std::vector<FeasibilityCheck> checks =
-              CheckSegments(result.trajectory, limits, params.check_step);
-          feasible = WorstScale(checks) <= 1.0;
+              CheckSegments(result.trajectory, limits, search_step);
+          feasible = WorstScale(checks) <= 1.0 &&
+                     CheckFeasibility(result.trajectory, limits, params.check_step).ratio <= 1.0;
           if (feasible) break;
           for (size_t i = 0; i < checks.size(); ++i) {
-            if (checks[i].scale > 1.0) problem.durations[i] *= std::sqrt(checks[i].scale) * 1.02;
+            const double scale = std::max(checks[i].scale, checks[i].scale > 0.97 ? 1.01 : 0.0);
+            if (scale > 1.0) problem.durations[i] *= std::sqrt(scale) * 1.02;
           }
           // a start too fast for the room ahead overshoots whatever the times: next start
           if (std::accumulate(problem.durations.begin(), problem.durations.end(), 0.0) >
