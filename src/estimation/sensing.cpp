@@ -6,22 +6,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/rates.h"
 #include "common/seed.h"
 
 namespace aerobox {
 namespace {
-
-// Physics steps of `step` [s] per reading at `rate` [Hz]; throws unless it is a whole number.
-int Divider(double rate, double step, const std::string& field) {
-  const double steps = 1.0 / (rate * step);
-  const long rounded = std::lround(steps);
-  if (rounded < 1 || std::abs(steps - static_cast<double>(rounded)) > 1e-6) {
-    throw std::invalid_argument(field + ": " + std::to_string(rate) +
-                                " Hz must divide the physics rate " + std::to_string(1.0 / step) +
-                                " Hz");
-  }
-  return static_cast<int>(rounded);
-}
 
 Mat15 InitialCovariance(const SensorParams& p) {
   Vec15 sigma;
@@ -68,8 +57,8 @@ void SensorParams::Validate(double step) const {
   imu.Validate();
   position.Validate();
   estimator.Validate();
-  Divider(imu.rate, step, "sensors.imu.rate");
-  Divider(position.rate, step, "sensors.position.rate");
+  StepsPerPeriod(imu.rate, step, "sensors.imu.rate:");
+  StepsPerPeriod(position.rate, step, "sensors.position.rate:");
   if (position.latency > estimator.history) {
     throw std::invalid_argument("sensors.position.latency: longer than the estimator's history");
   }
@@ -84,8 +73,8 @@ SensorSuite::SensorSuite(const SensorParams& params, std::uint64_t seed, double 
               InitialEstimate(params, StreamSeed(seed, SeedStream::kInitialEstimate), truth),
               InitialCovariance(params), t, params.estimator.history, step) {
   params_.Validate(step);
-  imu_divider_ = Divider(params.imu.rate, step, "sensors.imu.rate");
-  position_divider_ = Divider(params.position.rate, step, "sensors.position.rate");
+  imu_divider_ = StepsPerPeriod(params.imu.rate, step, "sensors.imu.rate:");
+  position_divider_ = StepsPerPeriod(params.position.rate, step, "sensors.position.rate:");
   step_ = step;
   last_imu_.t = t;
   last_imu_.gyro_B = truth.w_B;

@@ -8,6 +8,7 @@
 
 #include "common/fault_injection.h"
 #include "common/number_format.h"
+#include "common/rates.h"
 #include "common/seed.h"
 #include "scene/scene_mjcf.h"
 #include "vehicle/model_names.h"
@@ -66,18 +67,6 @@ void PlaceVehicleAtStart(const Map& map, const QuadParams& vehicle, const Vec3& 
 
 namespace {
 
-// How many physics steps of `step` [s] make one control period at `rate` [Hz].
-int ControlDivider(double rate, double step) {
-  const double steps = 1.0 / (rate * step);
-  const long rounded = std::lround(steps);
-  if (!(rate > 0) || rounded < 1 || std::abs(steps - static_cast<double>(rounded)) > 1e-6) {
-    throw std::invalid_argument("the controller's rate " + FormatNumber(rate) +
-                                " Hz must divide the physics rate " + FormatNumber(1.0 / step) +
-                                " Hz");
-  }
-  return static_cast<int>(rounded);
-}
-
 // Taking off from the floor: the reference starts once the vehicle is this close to its start
 // [m] and this slow [m/s], or after kMaxTakeoff [s] whatever happened.
 constexpr double kTakeoffTolerance = 0.02;
@@ -93,7 +82,7 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
     throw std::invalid_argument("FlyTrajectory: no vehicle or no controller");
   }
   const double step = sim->timestep();
-  const int divider = ControlDivider(loop.control_rate, step);
+  const int divider = StepsPerPeriod(loop.control_rate, step, "the controller's rate");
   loop.wind.Validate();
   loop.sensors.Validate(step);
   InnerLoops inner(loop.inner, *loop.vehicle);

@@ -159,11 +159,9 @@ Replanner::Replanner(const Map& map, const std::vector<bool>& unknown,
 }
 
 void Replanner::Rebuild() {
-  Map known = map_;
-  known.boxes.clear();
-  for (size_t i = 0; i < map_.boxes.size(); ++i) {
-    if (known_[i]) known.boxes.push_back(map_.boxes[i]);
-  }
+  std::vector<bool> hidden(known_.size());
+  for (size_t i = 0; i < known_.size(); ++i) hidden[i] = !known_[i];
+  const Map known = KnownMap(map_, hidden);
   planner_world_.emplace(known, planning_);
   trajectory_world_.emplace(known, trajectory_);
 }
