@@ -12,14 +12,16 @@ namespace aerobox {
 void ReplanningTable(const std::vector<std::string>& scenarios, int seeds, double fraction,
                      std::ostream& out, std::ostream& err) {
   out << "| map | unknown boxes | reached | contacts | replans | latency median [ms] | latency "
-         "worst [ms] | failures (seed: why) |\n|---|---|---|---|---|---|---|---|\n";
+         "worst [ms] | slowest (seed: outcome) | failures (seed: why) "
+         "|\n|---|---|---|---|---|---|---|---|---|\n";
   std::vector<double> all;
   int total = 0, reached_all = 0;
   for (const std::string& scenario : scenarios) {
     const std::string name = std::filesystem::path(scenario).parent_path().filename().string();
     int reached = 0, contacts = 0, replans = 0, unknown = 0;
     std::vector<double> latency;
-    std::string failures;
+    std::string failures, slowest;
+    double slowest_latency = -1.0;  // [s]
     for (int seed = 1; seed <= seeds; ++seed) {
       err << "\rreplanning: " << name << ", seed " << seed << "   " << std::flush;
       SetupOverrides overrides;
@@ -39,6 +41,10 @@ void ReplanningTable(const std::vector<std::string>& scenarios, int seeds, doubl
       for (const ReplanEvent& e : result.replans) {
         ++replans;
         latency.push_back(e.latency);
+        if (e.latency > slowest_latency) {
+          slowest_latency = e.latency;
+          slowest = std::to_string(seed) + ": " + e.outcome;
+        }
         all.push_back(e.latency);
       }
     }
@@ -49,7 +55,8 @@ void ReplanningTable(const std::vector<std::string>& scenarios, int seeds, doubl
     const double worst = latency.empty() ? 0.0 : latency.back();
     out << std::fixed << std::setprecision(1) << "| " << name << " | " << unknown << " | "
         << reached << "/" << seeds << " | " << contacts << " | " << replans << " | " << 1e3 * median
-        << " | " << 1e3 * worst << " | " << (failures.empty() ? "none" : failures) << " |\n"
+        << " | " << 1e3 * worst << " | " << (slowest.empty() ? "none" : slowest) << " | "
+        << (failures.empty() ? "none" : failures) << " |\n"
         << std::defaultfloat << std::flush;
   }
   std::sort(all.begin(), all.end());

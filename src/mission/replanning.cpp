@@ -332,16 +332,22 @@ std::optional<Reference> Replanner::Replan(double t, double tr, int goals_reache
   // brake: to rest along the current direction of travel, as far as the known world allows
   braking_ = true;
   const double speed = start.v_W.norm();
-  const double decel = BrakingDeceleration(params_.max_tilt);
-  Vec3 stop = start.p_W + (speed > 1e-3 ? Vec3(start.v_W * speed / (2 * decel)) : Vec3::Zero());
-  for (int k = 0; k < 6 && !trajectory_world_->IsSegmentFree(start.p_W, stop); ++k) {
-    stop = 0.5 * (start.p_W + stop);
-  }
-  if ((stop - start.p_W).norm() < 0.05) stop = start.p_W + 0.05 * start.v_W.normalized();
   const std::string why = found ? "no trajectory" : "no path";
   if (speed < 1e-3) return done(std::nullopt, why);
-  const TrajectoryResult brake =
-      ContinueTrajectory(start, {start.p_W, stop}, ViewOf(*trajectory_world_), params_);
+  // brake: to rest along the current direction of travel, at the braking distance (longer
+  // while the vehicle still accelerates forward); when that is infeasible further, and when
+  // the known world has no room for it nearer
+  const Vec3 direction = start.v_W / speed;
+  const double decel = BrakingDeceleration(params_.max_tilt);
+  const double forward = std::max(0.0, start.a_W.dot(direction));                 // [m/s^2]
+  const double distance = speed * speed / (2 * decel) * (1.0 + forward / decel);  // [m]
+  TrajectoryResult brake;
+  for (const double factor : {1.0, 1.6, 2.5, 0.7, 0.5}) {
+    const Vec3 stop = start.p_W + std::max(0.05, factor * distance) * direction;
+    if (!trajectory_world_->IsSegmentFree(start.p_W, stop)) continue;
+    brake = ContinueTrajectory(start, {start.p_W, stop}, ViewOf(*trajectory_world_), params_);
+    if (brake.status == TrajectoryStatus::kSolved) break;
+  }
   if (brake.status != TrajectoryStatus::kSolved) {
     return done(std::nullopt, why + ", and no room to brake");
   }

@@ -464,6 +464,9 @@ TrajectoryResult ContinueTrajectory(const StartState& start, const std::vector<V
   problem.start_velocity = start.v_W;
   problem.start_acceleration = start.a_W;
   problem.start_jerk = start.j_W;
+  // after a refinement, the last feasible times with the split segment's time halved: most
+  // often feasible at once, which spares the search
+  std::vector<double> warm;
   try {
     for (int round = 0;; ++round) {
       const std::vector<double> guess =
@@ -472,11 +475,15 @@ TrajectoryResult ContinueTrajectory(const StartState& start, const std::vector<V
       // at a common factor, each with rounds of per-segment scaling (damped: the square root of
       // what each segment's check asks, both ways)
       bool feasible = false;
-      for (const double factor : {1.0, 0.7, 1.4, 0.5, 2.0, 3.0}) {
-        problem.durations = guess;
-        for (double& t : problem.durations) t *= factor;
+      for (const double factor : {0.0, 1.0, 0.6, 1.6, 3.0}) {
+        if (factor == 0.0 && warm.empty()) continue;
+        problem.durations = factor == 0.0 ? warm : guess;
+        if (factor != 0.0) {
+          for (double& t : problem.durations) t *= factor;
+        }
         for (int k = 0; k < 8 && !feasible; ++k) {
           result.trajectory = SolveMinSnapClosedForm(problem);
+          ++result.stats.solves;
           if (!min_time) {
             const double v = result.trajectory.MaxNorm(kVelocity, params.check_step) / speed;
             const double a = result.trajectory.MaxNorm(kAcceleration, params.check_step) / accel;
@@ -494,9 +501,12 @@ TrajectoryResult ContinueTrajectory(const StartState& start, const std::vector<V
           feasible = WorstScale(checks) <= 1.0 &&
                      CheckFeasibility(result.trajectory, limits, params.check_step).ratio <= 1.0;
           if (feasible) break;
+          // damped at first; then doubled, since near the fixed start a segment's check asks
+          // for much less than it needs, and smaller steps crawl there
           for (size_t i = 0; i < checks.size(); ++i) {
             const double scale = std::max(checks[i].scale, checks[i].scale > 0.97 ? 1.01 : 0.0);
-            if (scale > 1.0) problem.durations[i] *= std::sqrt(scale) * 1.02;
+            if (scale > 1.0)
+              problem.durations[i] *= (k < 2 ? std::sqrt(scale) : scale * scale) * 1.02;
           }
           // a start too fast for the room ahead overshoots whatever the times: next start
           if (std::accumulate(problem.durations.begin(), problem.durations.end(), 0.0) >
@@ -508,12 +518,20 @@ TrajectoryResult ContinueTrajectory(const StartState& start, const std::vector<V
       }
       if (!feasible) {
         result.status = TrajectoryStatus::kInfeasible;
-        result.stats.solver_message = "no feasible times from six starts";
+        result.stats.solver_message = "no feasible times from four starts";
         result.trajectory = PiecewiseTrajectory();
         break;
       }
       result.stats.solver_message = "closed form, continuing";
+      const std::vector<Vec3> before = problem.waypoints;
       if (Refine(world, params, round, &problem.waypoints, &result)) break;
+      size_t split = 0;  // the segment Refine split in two
+      while (split + 1 < before.size() && before[split + 1] == problem.waypoints[split + 1]) {
+        ++split;
+      }
+      warm = problem.durations;
+      warm[split] *= 0.5;
+      warm.insert(warm.begin() + static_cast<long>(split), warm[split]);
     }
   } catch (const SingularSystem& e) {
     result.status = TrajectoryStatus::kFailed;

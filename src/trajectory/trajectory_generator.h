@@ -78,6 +78,7 @@ const char* ToString(TrajectoryStatus status);
 struct TrajectoryStats {
   int refinements = 0;  // midpoint insertions done
   int segments = 0;
+  int solves = 0;              // closed-form solves of a continuation's time search
   double solve_time = 0.0;     // [s] wall time of the whole generation
   double duration = 0.0;       // [s]
   double max_speed = 0.0;      // [m/s], sampled
