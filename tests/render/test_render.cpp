@@ -262,4 +262,24 @@ TEST_CASE("the wind shows as a cyan arrow at the vehicle") {
   CHECK(cyan(windy) > 40);  // a 1.2 m arrow seen from the overview camera
 }
 
+TEST_CASE("a path replanning gave up is drawn in grey") {
+  Simulation sim = SmallScene(Vec3(1, 1, 1));
+  Renderer renderer(&sim, RenderSettings(480, 360, Quality::kFast));
+  Image plain, abandoned;
+  Overlay overlay;
+  renderer.Render(CameraSpec{CameraKind::kOverview, ""}, overlay, &plain);
+  overlay.abandoned.push_back({Vec3(0.5, 3.5, 1.0), Vec3(3.5, 3.5, 1.0), Vec3(3.5, 0.5, 1.0)});
+  renderer.Render(CameraSpec{CameraKind::kOverview, ""}, overlay, &abandoned);
+  int grey = 0;  // pixels the path changed into grey: r, g and b alike
+  for (int y = 0; y < 360; ++y) {
+    for (int x = 0; x < 480; ++x) {
+      const std::uint8_t* a = plain.Pixel(x, y);
+      const std::uint8_t* b = abandoned.Pixel(x, y);
+      if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2]) continue;
+      grey += std::max({b[0], b[1], b[2]}) - std::min({b[0], b[1], b[2]}) < 25;
+    }
+  }
+  CHECK(grey > 100);  // 6 m of line, 2 pixels wide
+}
+
 }  // namespace aerobox
