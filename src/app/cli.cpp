@@ -14,6 +14,7 @@
 #include "app/compare_job.h"
 #include "app/exit_codes.h"
 #include "app/fly_job.h"
+#include "app/sweep_job.h"
 #include "common/error.h"
 #include "common/number_format.h"
 #include "mission/plan.h"
@@ -21,6 +22,7 @@
 #include "outputs/interrupt.h"
 #include "python/embedded.h"
 #include "scenario/scenario.h"
+#include "scenario/sweep.h"
 #include "scene/scene_mjcf.h"
 #include "sim/simulation.h"
 #include "telemetry/csv_table.h"
@@ -332,6 +334,7 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   std::string input;
   std::string start_text;
   std::vector<std::string> goal_texts;
+  std::vector<std::string> set_texts;
   std::string output;
   const auto add_input = [&](CLI::App* command) {
     command->add_option("input", input, "scenario.toml or map file (.txt, .json, .csv)")
@@ -341,6 +344,12 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
         ->add_option("--goal", goal_texts,
                      "goal X,Y,Z [m], overriding the scenario's; several: a mission through "
                      "each in order")
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    command
+        ->add_option("--set", set_texts,
+                     "set a scenario key, KEY=VALUE with a TOML value: trajectory.max_speed=2.0, "
+                     "controller.kind=se3; may be given several times")
         ->expected(1)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   };
@@ -375,6 +384,9 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   fly->add_option("--seed", seed, "random seed (default: the scenario's, else 1)")
       ->each([&seed_given](const std::string&) { seed_given = true; });
   fly->add_flag("--no-video", no_video, "do not write video.mp4");
+  bool no_overview = false, no_telemetry = false;
+  fly->add_flag("--no-overview", no_overview, "do not write overview.png");
+  fly->add_flag("--no-telemetry", no_telemetry, "do not write telemetry.csv");
   FlyOptions fly_options;
   std::string size = "640x480";
   fly->add_option("--size", size, "video size WxH, at most 1920x1080")->capture_default_str();
@@ -449,6 +461,45 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   compare->add_option("inputs", compare_inputs, "scenarios or maps")->capture_default_str();
   compare->add_option("--out", compare_out, "folder for the profile CSVs")->capture_default_str();
 
+  std::string sweep_file, shard_text;
+  SweepOptions sweep_options;
+  bool sweep_quiet = false;
+  CLI::App* sweep = app.add_subcommand(
+      "sweep",
+      "fly every run of a sweep file (scenarios x grid x seeds), each in its own process; write "
+      "results.jsonl and a report (see also: sweep merge, sweep slurm)");
+  sweep->add_option("sweep", sweep_file, "sweep.toml");
+  sweep->add_option("--out", sweep_options.out_dir,
+                    "output folder (default: renders/<sweep name>/)");
+  sweep->add_option("-j,--jobs", sweep_options.jobs,
+                    "runs at once (default: SLURM_CPUS_PER_TASK, else the number of cores)");
+  sweep->add_flag("--resume", sweep_options.resume,
+                  "run only the runs that have no result in the output folder");
+  sweep->add_option("--shard", shard_text,
+                    "run the share i/N of the runs (run k belongs to shard k mod N); default: "
+                    "from SLURM_ARRAY_TASK_ID, _MIN and _COUNT when set, else all");
+  sweep->add_flag("--quiet", sweep_quiet, "no progress bar");
+  std::vector<std::string> merge_folders;
+  std::string merge_out;
+  CLI::App* merge =
+      sweep->add_subcommand("merge", "join the results of a sweep's shards and write its report");
+  merge->add_option("folders", merge_folders, "the shards' output folders")->required();
+  merge->add_option("--out", merge_out, "where the joined results go (default: the first folder)");
+  SlurmOptions slurm_options;
+  CLI::App* slurm = sweep->add_subcommand(
+      "slurm", "write an sbatch script that runs the sweep as a Slurm job array plus a merge job");
+  slurm->add_option("sweep", sweep_file, "sweep.toml")->required();
+  slurm->add_option("--array", slurm_options.array, "tasks in the job array")->required();
+  slurm->add_option("--out", slurm_options.out_dir,
+                    "folder for the script, the logs and the results (default: "
+                    "<sweep name>.slurm/ beside the sweep file)");
+  slurm->add_option("--partition", slurm_options.partition, "Slurm partition");
+  slurm->add_option("--time", slurm_options.time, "time limit per task, e.g. 00:30:00");
+  slurm->add_option("--cpus", slurm_options.cpus, "CPUs per task: runs each task flies at once")
+      ->capture_default_str();
+  slurm->add_flag("--submit", slurm_options.submit, "submit the array and the merge job");
+  slurm->add_flag("--wait", slurm_options.wait, "with --submit: wait until the merge has run");
+
   CLI::App* model = app.add_subcommand("model", "write the vehicle's MJCF model alone");
   model->add_option("-o,--output", output, "output file (default: standard output)");
 
@@ -463,9 +514,27 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     if (model->parsed()) return RunModel(output, out);
     if (compare->parsed()) return RunCompare(compare_inputs, compare_out, out, err);
     if (bench->parsed()) return RunBenchBinary(bench->remaining(), err);
+    if (merge->parsed()) return RunSweepMerge(merge_folders, merge_out, out, err);
+    if (slurm->parsed()) {
+      if (slurm_options.wait && !slurm_options.submit) {
+        throw InputError({"command line", 0}, "--wait", "needs --submit");
+      }
+      return RunSweepSlurm(ReadSweep(sweep_file), slurm_options, out, err);
+    }
+    if (sweep->parsed()) {
+      if (sweep_file.empty()) {
+        throw InputError({"command line", 0}, "sweep",
+                         "expected a sweep file, or merge or slurm (aerobox sweep --help)");
+      }
+      if (!shard_text.empty()) sweep_options.shard = ParseShard(shard_text, "--shard");
+      sweep_options.progress = !sweep_quiet;
+      return RunSweep(ReadSweep(sweep_file), sweep_options, out, err);
+    }
     if (fly->parsed()) {
       fly_options.out_dir = out_dir;
       fly_options.video = !no_video;
+      fly_options.overview = !no_overview;
+      fly_options.telemetry = !no_telemetry;
       fly_options.progress = !quiet;
       char tail = 0;
       if (std::sscanf(size.c_str(), "%dx%d%c", &fly_options.width, &fly_options.height, &tail) !=
@@ -483,6 +552,9 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
       overrides.goal = goal;
     }
     if (seed_given) overrides.seed = seed;
+    for (const std::string& text : set_texts) {
+      overrides.settings.push_back(ParseSetting(text, "--set"));
+    }
     if (!wind_text.empty()) {
       overrides.wind_mean = ParsePointOption(wind_text, "--wind", "m/s");
       if (overrides.wind_mean->norm() > 50) {

@@ -79,6 +79,7 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
   render.quality = options.quality == "pretty" ? Quality::kPretty : Quality::kFast;
   render.camera = ParseCamera(options.camera);
   render.video = options.video;
+  render.overview = options.overview;
   render.fps = options.fps;
   render.speed = options.speed;
   render.frames_every = options.frames_every;
@@ -90,8 +91,12 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
       options.telemetry_rate > 0
           ? static_cast<int>(std::lround(setup.controller.rate / options.telemetry_rate))
           : 1;
-  CsvOutputs csv(folder, every, TelemetryExtrasFor(setup));
-  RenderOutputs pictures(folder, setup, render, err);
+  CsvOutputs csv(folder, every, TelemetryExtrasFor(setup), options.telemetry);
+  // no pictures asked for: no renderer either (a sweep's runs save its set-up)
+  std::optional<RenderOutputs> pictures;
+  if (options.video || options.overview || options.frames_every > 0) {
+    pictures.emplace(folder, setup, render, err);
+  }
   // the watchdog removes the video's temporary file if it has to end the process
   const std::string video_partial =
       VideoEncoder::TemporaryPath((fs::path(folder) / "video.mp4").string());
@@ -102,9 +107,10 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
   } unregister{video_partial};
   std::optional<ProgressLine> progress;
   MissionParts parts;
-  parts.observers = {&stop, &csv, &pictures};
-  if (options.progress && isatty(STDERR_FILENO)) {
-    progress.emplace(&pictures, err);
+  parts.observers = {&stop, &csv};
+  if (pictures) parts.observers.push_back(&*pictures);
+  if (options.video && options.progress && isatty(STDERR_FILENO)) {
+    progress.emplace(&*pictures, err);
     parts.observers.push_back(&*progress);
   }
   if (const std::string warning = LimitsWarning(setup); !warning.empty()) {
@@ -126,7 +132,7 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
   const PlanOutcome& plan = result.plan;
   const auto finish = [&](int code) {
     const JsonObject summary =
-        RunSummary(setup, result, {every, pictures.video_frames(), options.fps});
+        RunSummary(setup, result, {every, pictures ? pictures->video_frames() : 0, options.fps});
     WriteFileAtomically((fs::path(folder) / "summary.json").string(), summary.Text());
     return code;
   };
@@ -210,8 +216,9 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
     table << "none (no obstacles)\n";
   }
   table << "  files       " << folder
-        << "/{path,trajectory,telemetry}.csv, summary.json, overview.png"
-        << (options.video ? ", video.mp4 (" + std::to_string(pictures.video_frames()) + " frames)"
+        << (options.telemetry ? "/{path,trajectory,telemetry}.csv" : "/{path,trajectory}.csv")
+        << ", summary.json" << (options.overview ? ", overview.png" : "")
+        << (options.video ? ", video.mp4 (" + std::to_string(pictures->video_frames()) + " frames)"
                           : std::string())
         << "\n";
   if (!tracking_note.empty()) table << "  warning     " << tracking_note << "\n";

@@ -11,7 +11,9 @@ namespace aerobox {
 struct FlyOptions {
   std::string out_dir;  // "" : renders/<scenario name>/
   bool video = true;
-  int width = 640;  // [pixels]
+  bool overview = true;   // overview.png
+  bool telemetry = true;  // telemetry.csv
+  int width = 640;        // [pixels]
   int height = 480;
   int fps = 30;                  // frames per second of video
   double speed = 1.0;            // playback speed: 2 shows the flight twice as fast

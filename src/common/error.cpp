@@ -58,6 +58,7 @@ std::string Compose(const SourceLocation& where, const std::string& field,
 InputError::InputError(SourceLocation where, std::string field, const std::string& problem)
     : std::runtime_error(Compose(where, field, problem)),
       where_(std::move(where)),
-      field_(std::move(field)) {}
+      field_(std::move(field)),
+      problem_(problem) {}
 
 }  // namespace aerobox

@@ -20,10 +20,12 @@ class InputError : public std::runtime_error {
 
   const SourceLocation& where() const { return where_; }
   const std::string& field() const { return field_; }
+  const std::string& problem() const { return problem_; }
 
  private:
   SourceLocation where_;
   std::string field_;
+  std::string problem_;
 };
 
 }  // namespace aerobox

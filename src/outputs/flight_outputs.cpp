@@ -38,8 +38,11 @@ void StopOnRequest::OnSample(const TelemetrySample&) {
   if (*stop_) throw Interrupted();
 }
 
-CsvOutputs::CsvOutputs(std::string folder, int every, const TelemetryExtras& extras)
-    : folder_(std::move(folder)), every_(std::max(1, every)), extras_(extras) {}
+CsvOutputs::CsvOutputs(std::string folder, int every, const TelemetryExtras& extras, bool telemetry)
+    : folder_(std::move(folder)),
+      every_(std::max(1, every)),
+      extras_(extras),
+      telemetry_(telemetry) {}
 CsvOutputs::~CsvOutputs() = default;
 
 void CsvOutputs::OnPlan(const PlanOutcome& plan) {
@@ -51,6 +54,7 @@ void CsvOutputs::OnPlan(const PlanOutcome& plan) {
 }
 
 void CsvOutputs::OnFlightStart(const Simulation&, const Controller& controller) {
+  if (!telemetry_) return;
   telemetry_file_ = std::make_unique<StreamingFile>((fs::path(folder_) / "telemetry.csv").string());
   controller_columns_ = controller.ReportColumns();
   block_ = std::make_unique<CsvTable>(TelemetryTable(controller_columns_, extras_));
@@ -59,6 +63,7 @@ void CsvOutputs::OnFlightStart(const Simulation&, const Controller& controller) 
 }
 
 void CsvOutputs::OnSample(const TelemetrySample& sample) {
+  if (!telemetry_) return;
   if (samples_++ % every_ != 0) return;
   AddTelemetryRow(sample, block_.get(), extras_);
   if (block_->rows() < kTelemetryBlock) return;
@@ -67,6 +72,7 @@ void CsvOutputs::OnSample(const TelemetrySample& sample) {
 }
 
 void CsvOutputs::OnFlightEnd(const Simulation&, const FlightResult&) {
+  if (!telemetry_) return;
   telemetry_file_->Append(block_->Text().substr(header_length_));
   telemetry_file_->Commit();
 }
@@ -203,6 +209,7 @@ void RenderOutputs::OnSample(const TelemetrySample& s) {
 
 void RenderOutputs::OnFlightEnd(const Simulation& sim, const FlightResult& result) {
   if (video_) video_->Finish();
+  if (!options_.overview) return;
   // overview.png: the map, the path, the trajectory and the flown trail in one picture, with
   // the map from above in a corner and what the lines mean
   Overlay overview = overlay_;

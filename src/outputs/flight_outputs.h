@@ -40,7 +40,9 @@ class CsvOutputs : public MissionObserver {
  public:
   // `every`: one telemetry row per this many control steps
   // `extras`: the columns of the flight's wind and sensors (TelemetryExtrasFor)
-  explicit CsvOutputs(std::string folder, int every = 1, const TelemetryExtras& extras = {});
+  // `telemetry`: false writes path.csv and trajectory.csv only
+  explicit CsvOutputs(std::string folder, int every = 1, const TelemetryExtras& extras = {},
+                      bool telemetry = true);
   ~CsvOutputs() override;
   void OnPlan(const PlanOutcome& plan) override;
   void OnFlightStart(const Simulation&, const Controller& controller) override;
@@ -51,6 +53,7 @@ class CsvOutputs : public MissionObserver {
   std::string folder_;
   int every_;
   TelemetryExtras extras_;
+  bool telemetry_;
   long samples_ = 0;
   std::unique_ptr<StreamingFile> telemetry_file_;
   std::vector<std::string> controller_columns_;
@@ -64,6 +67,7 @@ struct RenderOptions {
   Quality quality = Quality::kFast;
   CameraSpec camera;
   bool video = true;          // video.mp4
+  bool overview = true;       // overview.png
   int fps = 30;               // video frames per second
   double speed = 1.0;         // playback speed
   double frames_every = 0.0;  // [s] between frames/*.png (0: none)

@@ -2,6 +2,7 @@
 
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <sstream>
 
@@ -723,18 +724,102 @@ void ReadReplan(const toml::table& table, const std::string& file, ReplanParams*
   }
 }
 
-Scenario ReadScenario(std::istream& in, const std::string& file) {
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
-  toml::table table;
+namespace {
+
+toml::table ParseToml(const std::string& text, const std::string& file) {
   try {
-    table = toml::parse(text, file);
+    return toml::parse(text, file);
   } catch (const toml::parse_error& error) {
     throw InputError({file, static_cast<int>(error.source().begin.line)}, "TOML",
                      std::string(error.description()));
   }
+}
 
+// Sets `setting` in the table: its dotted key names nested tables (made when missing).
+void ApplySetting(const Setting& setting, toml::table* table) {
+  std::vector<std::string> parts;
+  std::istringstream key(setting.key);
+  for (std::string part; std::getline(key, part, '.');) parts.push_back(part);
+  const bool well_formed =
+      !parts.empty() && setting.key.back() != '.' &&
+      std::none_of(parts.begin(), parts.end(), [](const std::string& p) { return p.empty(); });
+  if (!well_formed) {
+    throw InputError(setting.where, setting.key,
+                     "expected a scenario key, dotted for a table's: seed, trajectory.max_speed");
+  }
+  toml::table value;
+  try {
+    value = toml::parse("value = " + setting.value);
+  } catch (const toml::parse_error&) {
+    value.insert("value", setting.value);  // a bare word: a string
+  }
+  toml::table* at = table;
+  for (size_t i = 0; i + 1 < parts.size(); ++i) {
+    toml::node* next = at->get(parts[i]);
+    if (next == nullptr) {
+      at->insert(parts[i], toml::table());
+      next = at->get(parts[i]);
+    }
+    if (!next->is_table()) {
+      throw InputError(setting.where, setting.key, parts[i] + " is not a table in the scenario");
+    }
+    at = next->as_table();
+  }
+  at->insert_or_assign(parts.back(), *value.get("value"));
+}
+
+Scenario ScenarioFromTable(const toml::table& table, const std::string& file);
+
+// The scenario read as it is, then with the settings: an error the settings bring is reported
+// where the setting that brings it was given.
+Scenario ScenarioWithSettings(const std::string& text, const std::string& file,
+                              const std::vector<Setting>& settings) {
+  const toml::table table = ParseToml(text, file);
+  Scenario plain = ScenarioFromTable(table, file);
+  if (settings.empty()) return plain;
+  const auto blame = [&file](const Setting& setting, const InputError& e) {
+    return InputError(
+        setting.where, setting.key,
+        "in " + file + ": " + (e.field().empty() ? "" : e.field() + ": ") + e.problem());
+  };
+  for (const Setting& setting : settings) {
+    toml::table alone = table;
+    ApplySetting(setting, &alone);
+    try {
+      ScenarioFromTable(alone, file);
+    } catch (const InputError& e) {
+      throw blame(setting, e);
+    }
+  }
+  toml::table all = table;
+  for (const Setting& setting : settings) ApplySetting(setting, &all);
+  try {
+    return ScenarioFromTable(all, file);
+  } catch (const InputError& e) {
+    throw blame(settings.front(), e);
+  }
+}
+
+}  // namespace
+
+Setting ParseSetting(const std::string& text, const std::string& option) {
+  const size_t equals = text.find('=');
+  if (equals == std::string::npos || equals == 0 || equals + 1 == text.size()) {
+    throw InputError({"command line", 0}, option,
+                     "expected KEY=VALUE, e.g. trajectory.max_speed=2.0, got '" + text + "'");
+  }
+  return {text.substr(0, equals), text.substr(equals + 1), {"command line", 0}};
+}
+
+Scenario ReadScenario(std::istream& in, const std::string& file) {
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return ScenarioFromTable(ParseToml(buffer.str(), file), file);
+}
+
+namespace {
+
+Scenario ScenarioFromTable(const toml::table& table, const std::string& file) {
   Scenario scenario;
   scenario.file = file;
   // the file's stem, so that several scenarios in one folder write to their own outputs; a
@@ -864,6 +949,8 @@ Scenario ReadScenario(std::istream& in, const std::string& file) {
   return scenario;
 }
 
+}  // namespace
+
 namespace {
 
 FlightSetup SetupFrom(const std::string& path, std::optional<Scenario> scenario,
@@ -874,16 +961,20 @@ FlightSetup SetupFrom(const std::string& path, std::optional<Scenario> scenario,
 FlightSetup LoadFlightSetup(const std::string& path, const SetupOverrides& overrides) {
   std::optional<Scenario> scenario;
   if (fs::path(path).extension() == ".toml") {
-    std::istringstream text(ReadTextFile(path));
-    scenario = ReadScenario(text, path);
+    scenario = ScenarioWithSettings(ReadTextFile(path), path, overrides.settings);
+  } else if (!overrides.settings.empty()) {
+    const Setting& setting = overrides.settings.front();
+    throw InputError(setting.where, setting.key,
+                     "settings change a scenario's keys: give a scenario file (.toml), not the "
+                     "map " +
+                         path);
   }
   return SetupFrom(path, std::move(scenario), overrides);
 }
 
 FlightSetup LoadFlightSetupFromText(const std::string& text, const std::string& file,
                                     const SetupOverrides& overrides) {
-  std::istringstream in(text);
-  return SetupFrom(file, ReadScenario(in, file), overrides);
+  return SetupFrom(file, ScenarioWithSettings(text, file, overrides.settings), overrides);
 }
 
 namespace {

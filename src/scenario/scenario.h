@@ -6,7 +6,9 @@
 #include <istream>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "common/error.h"
 #include "map/map.h"
 #include "map/map_reader.h"
 #include "mission/setup.h"
@@ -80,6 +82,14 @@ std::vector<TrajectorySample> ReadTrajectoryCsv(std::istream& in, const std::str
 // Parses scenario text; throws InputError naming the file, line and key at fault.
 Scenario ReadScenario(std::istream& in, const std::string& file);
 
+// One scenario key set from outside the file (`--set KEY=VALUE`, a sweep's grid): a dotted key
+// and a TOML value; a bare word that is not TOML is taken as a string.
+struct Setting {
+  std::string key;       // "trajectory.max_speed", "controller.kind", "goal"
+  std::string value;     // 2.0, "cascade", cascade, [9.0, 7.0, 1.5]
+  SourceLocation where;  // where it was given, for messages
+};
+
 struct SetupOverrides {
   std::optional<Vec3> start;
   std::optional<Vec3> goal;
@@ -87,7 +97,13 @@ struct SetupOverrides {
   std::optional<std::uint64_t> seed;
   std::optional<Vec3> wind_mean;     // [m/s] --wind
   std::optional<double> turbulence;  // [m/s] --turbulence: Dryden with this intensity, 0: none
+  // applied to the scenario's keys before it is read; a setting the scenario's reader refuses is
+  // reported where the setting was given
+  std::vector<Setting> settings;
 };
+
+// "KEY=VALUE" from the command line; throws InputError naming `option`.
+Setting ParseSetting(const std::string& text, const std::string& option);
 
 // `path` is a scenario (.toml) or a map (.txt, .json, .csv). Start and goal come from, in order:
 // the overrides, the scenario, the map file, a "<map stem>.startgoal.txt" file beside a map
