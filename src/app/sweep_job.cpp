@@ -1,6 +1,7 @@
 #include "app/sweep_job.h"
 
 #include <fcntl.h>
+#include <pthread.h>
 #include <sched.h>
 #include <spawn.h>
 #include <sys/file.h>
@@ -196,6 +197,13 @@ std::vector<std::string> FlyCommand(const SweepRun& run, const Sweep& sweep,
 }
 
 pid_t Spawn(const std::vector<std::string>& command, const fs::path& log) {
+  // the run starts with no signal blocked (the sweep blocks SIGCHLD to wait for it)
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  sigset_t none;
+  sigemptyset(&none);
+  posix_spawnattr_setsigmask(&attributes, &none);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
@@ -207,8 +215,9 @@ pid_t Spawn(const std::vector<std::string>& command, const fs::path& log) {
   for (std::string& word : words) argv.push_back(word.data());
   argv.push_back(nullptr);
   pid_t pid = 0;
-  const int code = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  const int code = posix_spawn(&pid, argv[0], &actions, &attributes, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attributes);
   if (code != 0) throw std::runtime_error("cannot start " + command[0]);
   return pid;
 }
@@ -397,6 +406,17 @@ int RunSweep(const Sweep& sweep, const SweepOptions& options, std::ostream& out,
 
   ResultsFile results(results_path);
   SweepProgress progress(err, sweep.name, todo.size(), options.progress);
+  // SIGCHLD blocked, so that the loop below sleeps until a run ends (and the mask is restored
+  // on every way out)
+  sigset_t child_signal;
+  sigemptyset(&child_signal);
+  sigaddset(&child_signal, SIGCHLD);
+  sigset_t previous_mask;
+  pthread_sigmask(SIG_BLOCK, &child_signal, &previous_mask);
+  struct RestoreMask {
+    sigset_t mask;
+    ~RestoreMask() { pthread_sigmask(SIG_SETMASK, &mask, nullptr); }
+  } restore{previous_mask};
   std::vector<Child> running;
   size_t next = 0;
   int failed = 0;
@@ -415,7 +435,9 @@ int RunSweep(const Sweep& sweep, const SweepOptions& options, std::ostream& out,
     int status = 0;
     const pid_t pid = waitpid(-1, &status, WNOHANG);
     if (pid <= 0) {
-      usleep(5000);
+      // until a run ends (SIGCHLD), or 50 ms to look at Ctrl-C again
+      const timespec timeout{0, 50'000'000};
+      sigtimedwait(&child_signal, nullptr, &timeout);
       continue;
     }
     const auto child = std::find_if(running.begin(), running.end(),

@@ -17,6 +17,7 @@
 #include "bench/replanning_benchmark.h"
 #include "bench/robustness.h"
 #include "bench/solver_comparison.h"
+#include "bench/sweep_benchmark.h"
 #include "common/error.h"
 #include "geometry/collision_world.h"
 #include "mission/mission.h"
@@ -140,6 +141,12 @@ int RunBench(const std::string& sections, const std::string& scenes, const std::
     ReplanningTable(scenarios, seeds, 0.3, out, err);
     out << "\n";
   }
+  if (wanted("sweep")) {
+    out << "## Sweep throughput: aerobox sweep with one and two processes\n\n";
+    SweepBenchmark((std::filesystem::path(scenes) / "window" / "scenario.toml").string(), seeds,
+                   out, err);
+    out << "\n";
+  }
   if (wanted("city")) {
     out << "## City scale: the FCND map, 50 queries 600-700 m apart\n\n";
     if (city.empty()) {
@@ -182,7 +189,7 @@ int main(int argc, char** argv) {
   double bench_seconds = 1.0;
   app.add_option(
          "--sections", bench_sections,
-         "all, or some of: trajectory,flight,render,speed,python,robustness,replanning,city,"
+         "all, or some of: trajectory,flight,render,speed,python,robustness,replanning,sweep,city,"
          "planning")
       ->capture_default_str();
   app.add_option("--scenes", bench_scenes, "folder with the scenes")->capture_default_str();

@@ -1,0 +1,68 @@
+#include "bench/sweep_benchmark.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <stdexcept>
+
+namespace aerobox {
+namespace fs = std::filesystem;
+namespace {
+
+std::string Quoted(const std::string& text) {
+  std::string quoted = "'";
+  for (const char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+// Wall time of one `aerobox sweep` [s].
+double TimeSweep(const std::string& binary, const fs::path& sweep, const fs::path& out, int jobs) {
+  fs::remove_all(out);
+  const std::string command = Quoted(binary) + " sweep " + Quoted(sweep.string()) + " --out " +
+                              Quoted(out.string()) + " -j " + std::to_string(jobs) +
+                              " --quiet > /dev/null";
+  const auto begin = std::chrono::steady_clock::now();
+  const int status = std::system(command.c_str());
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    throw std::runtime_error("aerobox sweep failed: " + command);
+  }
+  return wall;
+}
+
+}  // namespace
+
+void SweepBenchmark(const std::string& window_scenario, int seeds, std::ostream& out,
+                    std::ostream& err) {
+  const fs::path binary = fs::read_symlink("/proc/self/exe").parent_path() / "aerobox";
+  if (!fs::exists(binary)) throw std::runtime_error(binary.string() + " is missing");
+  const fs::path work =
+      fs::temp_directory_path() / ("aerobox_sweep_bench_" + std::to_string(getpid()));
+  fs::create_directories(work);
+  const fs::path sweep = work / "speeds.toml";
+  std::ofstream(sweep) << "scenarios = [\"" << fs::absolute(window_scenario).string() << "\"]\n"
+                       << "seeds = " << seeds << "\n[grid]\n"
+                       << "\"trajectory.max_speed\" = [1.0, 2.0, 3.0, 4.0, 5.0]\n";
+  const int runs = 5 * seeds;
+  err << "sweep: " << runs << " runs with -j 1 ..." << std::flush;
+  const double one = TimeSweep(binary.string(), sweep, work / "j1", 1);
+  err << "\rsweep: " << runs << " runs with -j 2 ..." << std::flush;
+  const double two = TimeSweep(binary.string(), sweep, work / "j2", 2);
+  err << "\r" << std::string(40, ' ') << "\r" << std::flush;
+  fs::remove_all(work);
+  out << std::fixed << std::setprecision(2) << "| processes | wall time [s] | runs per second |\n"
+      << "|---|---|---|\n"
+      << "| -j 1 | " << one << " | " << runs / one << " |\n"
+      << "| -j 2 | " << two << " | " << runs / two << " |\n\n"
+      << "Throughput of -j 2 against -j 1: " << one / two << "x (" << runs << " runs: the window, "
+      << seeds << " seeds x 5 speed limits, no video)\n"
+      << std::defaultfloat;
+}
+
+}  // namespace aerobox

@@ -1,0 +1,13 @@
+// The throughput of `aerobox sweep`: one 100-run sweep (the window, 20 seeds x 5 speed limits,
+// no video) with one process and with two at a time, in the same command.
+#pragma once
+
+#include <ostream>
+#include <string>
+
+namespace aerobox {
+
+void SweepBenchmark(const std::string& window_scenario, int seeds, std::ostream& out,
+                    std::ostream& err);
+
+}  // namespace aerobox
