@@ -565,8 +565,8 @@ int RunSweepSlurm(const Sweep& sweep, const SlurmOptions& options, std::ostream&
        << "array of " << options.array << " tasks.\n"
        << "#   sbatch " << script.string() << "    the array alone\n"
        << "#   bash " << script.string()
-       << "      the array and a merge job after it (extra arguments go to the merge's sbatch, "
-          "e.g. --wait)\n"
+       << "      the array and a merge job after it (--wait: until the merge has run; other "
+          "arguments go to the merge's sbatch)\n"
        << "#SBATCH --job-name=aerobox-" << sweep.name << "\n"
        << "#SBATCH --array=0-" << options.array - 1 << "\n"
        << "#SBATCH --ntasks=1\n"
@@ -577,6 +577,8 @@ int RunSweepSlurm(const Sweep& sweep, const SlurmOptions& options, std::ostream&
   text << "set -euo pipefail\n"
        << "cd " << quoted(fs::current_path().string()) << "\n"
        << "if [ -z \"${SLURM_JOB_ID:-}\" ]; then\n"
+       << "  wait_for_merge=0\n"
+       << "  if [ \"${1:-}\" = --wait ]; then wait_for_merge=1; shift; fi\n"
        << "  array=$(sbatch --parsable " << quoted(script.string()) << ")\n"
        << "  array=${array%%;*}\n"
        << "  echo \"aerobox: submitted the array, job $array\"\n"
@@ -585,8 +587,15 @@ int RunSweepSlurm(const Sweep& sweep, const SlurmOptions& options, std::ostream&
   if (!options.partition.empty()) text << " --partition=" << options.partition;
   text << " --output=" << quoted((folder / "logs" / "merge-%j.log").string())
        << " \"$@\" --wrap=" << quoted(binary + " sweep merge " + quoted(folder.string())) << ")\n"
-       << "  echo \"aerobox: submitted the merge, job ${merge%%;*}, after job $array\"\n"
-       << "  exit 0\n"
+       << "  merge=${merge%%;*}\n"
+       << "  echo \"aerobox: submitted the merge, job $merge, after job $array\"\n"
+       << "  [ \"$wait_for_merge\" = 1 ] || exit 0\n"
+       << "  # sbatch --wait polls ever more slowly: squeue twice a second instead\n"
+       << "  while [ -n \"$(squeue -h -j \"$merge\" -o %i 2> /dev/null)\" ]; do sleep 0.5; done\n"
+       << "  code=$(scontrol show job \"$merge\" 2> /dev/null | sed -n "
+          "'s/.* ExitCode=\\([0-9]*\\):.*/\\1/p')\n"
+       << "  echo \"aerobox: the merge job ended, exit code ${code:-unknown}\"\n"
+       << "  exit \"${code:-1}\"\n"
        << "fi\n"
        << "# an array task: its shard comes from SLURM_ARRAY_TASK_ID, _MIN and _COUNT\n"
        << "exec " << binary << " sweep " << quoted(sweep_file.string()) << " --out "
@@ -613,8 +622,10 @@ int RunSweepSlurm(const Sweep& sweep, const SlurmOptions& options, std::ostream&
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    err << "aerobox: error: submitting " << script.string() << " failed (sbatch's message is "
-        << "above)\n";
+    err << "aerobox: error: " << script.string()
+        << (options.wait
+                ? " failed: sbatch's message, or the merge's (logs/merge-*.log), says why\n"
+                : " failed: sbatch's message is above\n");
     return kExitUnexpected;
   }
   return kExitReachedGoal;
