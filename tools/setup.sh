@@ -27,6 +27,8 @@ packages=(
   pybind11-dev python3-dev python3-numpy
   # tests/
   doctest-dev
+  # report.html: three.js and Chart.js copied into the page; the page is tested in chromium
+  libjs-three libjs-chart.js chromium
   # aerobox sweep slurm, tested on a single-node cluster on localhost (tools/slurm_local.sh)
   slurm-wlm munge
   # tools/plot_telemetry.py (run by tools/fly.sh, tested by tools/test.sh)

@@ -312,6 +312,21 @@ int RunBenchBinary(const std::vector<std::string>& args, std::ostream& err) {
   return WIFSIGNALED(status) && WTERMSIG(status) == SIGINT ? kExitInterrupted : kExitUnexpected;
 }
 
+// The command line as a shell reads it, for report.html.
+std::string RepeatCommand(int argc, const char* const* argv) {
+  std::string command = "aerobox";
+  for (int i = 1; i < argc; ++i) {
+    const std::string word = argv[i];
+    const bool plain = !word.empty() && word.find_first_not_of(
+                                            "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                            "0123456789_-+=./,:@%") == std::string::npos;
+    std::string quoted = "'";
+    for (const char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    command += " " + (plain ? word : quoted + "'");
+  }
+  return command;
+}
+
 int RunModel(const std::string& output, std::ostream& out) {
   const std::string xml = VehicleModelMjcf(QuadParams());
   if (output.empty() || output == "-") {
@@ -387,6 +402,9 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   bool no_overview = false, no_telemetry = false;
   fly->add_flag("--no-overview", no_overview, "do not write overview.png");
   fly->add_flag("--no-telemetry", no_telemetry, "do not write telemetry.csv");
+  bool no_report = false;
+  fly->add_flag("--no-report", no_report,
+                "do not write report.html (the run in 3-D and in charts, for a browser)");
   FlyOptions fly_options;
   std::string size = "640x480";
   fly->add_option("--size", size, "video size WxH, at most 1920x1080")->capture_default_str();
@@ -535,6 +553,8 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
       fly_options.video = !no_video;
       fly_options.overview = !no_overview;
       fly_options.telemetry = !no_telemetry;
+      fly_options.report = !no_report;
+      fly_options.command = RepeatCommand(argc, argv);
       fly_options.progress = !quiet;
       char tail = 0;
       if (std::sscanf(size.c_str(), "%dx%d%c", &fly_options.width, &fly_options.height, &tail) !=
@@ -620,7 +640,11 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     }
     if (scene->parsed()) return RunScene(setup, output, out);
     if (plan->parsed()) return RunPlan(setup, out_dir, out);
-    if (fly->parsed()) return RunFly(setup, fly_options, out, err);
+    if (fly->parsed()) {
+      // the seed in force, so that the command repeats the run
+      if (!seed_given) fly_options.command += " --seed " + std::to_string(setup.seed);
+      return RunFly(setup, fly_options, out, err);
+    }
     return RunCheck(setup, out);
   } catch (const InputError& error) {
     err << "aerobox: error: " << error.what() << "\n";

@@ -14,6 +14,7 @@
 #include "outputs/files.h"
 #include "outputs/flight_outputs.h"
 #include "outputs/interrupt.h"
+#include "outputs/report.h"
 #include "outputs/summary.h"
 #include "planning/path_simplify.h"
 #include "render/video_encoder.h"
@@ -109,6 +110,11 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
   MissionParts parts;
   parts.observers = {&stop, &csv};
   if (pictures) parts.observers.push_back(&*pictures);
+  std::optional<ReportOutputs> report;
+  if (options.report) {
+    report.emplace(folder, setup);
+    parts.observers.push_back(&*report);
+  }
   if (options.video && options.progress && isatty(STDERR_FILENO)) {
     progress.emplace(&*pictures, err);
     parts.observers.push_back(&*progress);
@@ -134,6 +140,17 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
     const JsonObject summary =
         RunSummary(setup, result, {every, pictures ? pictures->video_frames() : 0, options.fps});
     WriteFileAtomically((fs::path(folder) / "summary.json").string(), summary.Text());
+    if (report) {
+      try {
+        report->Write(summary.Text(), options.command.empty()
+                                          ? "aerobox fly " + setup.map.source + " --seed " +
+                                                std::to_string(setup.seed)
+                                          : options.command);
+      } catch (const InputError& e) {
+        // the flight's own files are written: a page that cannot be made is a warning
+        err << "aerobox: warning: no report.html: " << e.what() << "\n";
+      }
+    }
     return code;
   };
   if (result.status == MissionStatus::kNoPath) {
@@ -218,6 +235,7 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
   table << "  files       " << folder
         << (options.telemetry ? "/{path,trajectory,telemetry}.csv" : "/{path,trajectory}.csv")
         << ", summary.json" << (options.overview ? ", overview.png" : "")
+        << (options.report ? ", report.html" : "")
         << (options.video ? ", video.mp4 (" + std::to_string(pictures->video_frames()) + " frames)"
                           : std::string())
         << "\n";

@@ -13,6 +13,8 @@ struct FlyOptions {
   bool video = true;
   bool overview = true;   // overview.png
   bool telemetry = true;  // telemetry.csv
+  bool report = true;     // report.html
+  std::string command;    // the command line that repeats the run, for report.html
   int width = 640;        // [pixels]
   int height = 480;
   int fps = 30;                  // frames per second of video

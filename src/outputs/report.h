@@ -1,0 +1,51 @@
+// report.html: one page that shows a whole run in a browser, from file:// with no network and
+// no server. The map, the plan and the flight in 3-D (three.js), the numbers over time
+// (Chart.js), a time slider, and the summary; the data and Debian's packaged scripts are copied
+// into the page.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mission/mission.h"
+
+namespace aerobox {
+
+// Where the page's scripts come from: Debian's libjs-three and libjs-chart.js.
+struct ReportScripts {
+  std::string three = "/usr/share/javascript/three/three.min.js";
+  std::string orbit_controls = "/usr/share/javascript/three/examples/js/controls/OrbitControls.js";
+  std::string chart = "/usr/share/javascript/chart.js/chart.min.js";
+};
+
+// Collects what the page shows as the run goes (telemetry at most every 10 ms of flight), then
+// writes the page with Write.
+class ReportOutputs : public MissionObserver {
+ public:
+  ReportOutputs(std::string folder, const FlightSetup& setup);
+  void OnPlan(const PlanOutcome& plan) override;
+  void OnSample(const TelemetrySample& sample) override;
+  void OnFlightEnd(const Simulation& sim, const FlightResult& result) override;
+  void OnDiscovery(const std::vector<double>& revealed_at,
+                   const std::vector<ReplanEvent>& replans) override;
+
+  // Writes <folder>/report.html with the run's summary.json text and the command that repeats
+  // the run. Throws InputError naming a script that is missing (install libjs-three and
+  // libjs-chart.js) or the page when it cannot be written.
+  std::string Write(const std::string& summary_json, const std::string& command,
+                    const ReportScripts& scripts = ReportScripts()) const;
+
+ private:
+  std::string folder_;
+  const FlightSetup& setup_;
+  std::string plan_json_ = "{}";
+  std::vector<TelemetrySample> samples_;
+  double next_sample_ = 0.0;  // [s]
+  std::vector<double> revealed_at_;
+  std::vector<ReplanEvent> replans_;
+  bool flown_ = false;
+  FlightResult result_;
+  Vec3 end_position_ = Vec3::Zero();
+};
+
+}  // namespace aerobox
