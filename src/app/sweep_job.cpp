@@ -189,6 +189,7 @@ std::vector<std::string> FlyCommand(const SweepRun& run, const Sweep& sweep,
   if (!run.video) words.push_back("--no-video");
   if (!sweep.keep.overview) words.push_back("--no-overview");
   if (!sweep.keep.telemetry) words.push_back("--no-telemetry");
+  if (!sweep.keep.report) words.push_back("--no-report");
   for (const Setting& s : run.settings) {
     words.push_back("--set");
     words.push_back(s.key + "=" + s.value);

@@ -11,9 +11,9 @@
 namespace aerobox {
 
 // `manifest`: sweep.json (name, grid keys, runs in order); `results`: by run id. Writes
-// report.md, report.csv, success.svg and tracking.svg into `folder` and returns their paths,
-// report.md first. Nothing in them depends on wall times or hosts: the same results give the
-// same bytes.
+// report.md, report.csv, success.svg, tracking.svg and report.html (with Chart.js copied in,
+// when libjs-chart.js is there) into `folder` and returns their paths, report.md first. Nothing in
+// them depends on wall times or hosts: the same results give the same bytes.
 std::vector<std::string> WriteSweepReport(const nlohmann::json& manifest,
                                           const std::map<std::string, nlohmann::json>& results,
                                           const std::string& folder);

@@ -172,8 +172,12 @@ std::string ReportOutputs::Write(const std::string& summary_json, const std::str
   std::ostringstream out;
   Numbers n(out);
   const Map& map = setup_.map;
+  std::string summary = summary_json;  // never "</script>" inside the page's data
+  for (size_t at = summary.find("</"); at != std::string::npos; at = summary.find("</", at + 3)) {
+    summary.replace(at, 2, "<\\/");
+  }
   out << "{\"name\":" << Quoted(setup_.name) << ",\"command\":" << Quoted(command)
-      << ",\"summary\":" << summary_json << ",\"plan\":" << plan_json_ << ",\"bounds\":[";
+      << ",\"summary\":" << summary << ",\"plan\":" << plan_json_ << ",\"bounds\":[";
   n.Point(map.bounds.min);
   out << ",";
   n.Point(map.bounds.max);

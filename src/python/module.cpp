@@ -19,6 +19,7 @@
 #include "mission/plan.h"
 #include "outputs/files.h"
 #include "outputs/flight_outputs.h"
+#include "outputs/report.h"
 #include "outputs/summary.h"
 #include "planning/path_simplify.h"
 #include "python/seams.h"
@@ -416,7 +417,7 @@ class BuiltinController {
 // The files `aerobox fly` writes, from a run's record: the flight is replayed through the same
 // observers (the state of every control step set in a fresh scene).
 std::string WriteOutputs(const FlightRecord& record, const std::string& out_dir, bool video,
-                         int width, int height, int fps, const std::string& camera) {
+                         int width, int height, int fps, const std::string& camera, bool report) {
   return Checked([&] {
     const FlightSetup& setup = *record.setup;
     const OutputFolder folder(out_dir, setup.name);
@@ -453,7 +454,9 @@ std::string WriteOutputs(const FlightRecord& record, const std::string& out_dir,
       RenderOutputs pictures(folder.path(), setup, render, std::cerr);
       Simulation sim = Simulation::FromXml(SceneMjcfFor(setup), setup.name);
       pictures.OnScene(sim, {});
-      const std::vector<MissionObserver*> observers = {&csv, &pictures};
+      ReportOutputs page(folder.path(), setup);
+      std::vector<MissionObserver*> observers = {&csv, &pictures};
+      if (report) observers.push_back(&page);
       for (MissionObserver* o : observers) o->OnPlan(plan);
       RecordedController controller;
       for (MissionObserver* o : observers) o->OnFlightStart(sim, controller);
@@ -473,6 +476,11 @@ std::string WriteOutputs(const FlightRecord& record, const std::string& out_dir,
       const JsonObject summary = RunSummary(setup, mission, {1, pictures.video_frames(), fps});
       WriteFileAtomically((std::filesystem::path(folder.path()) / "summary.json").string(),
                           summary.Text());
+      if (report) {
+        page.Write(summary.Text(), "# written by the aerobox Python package: Simulator(\"" +
+                                       setup.map.source + "\").run(...), seed " +
+                                       std::to_string(setup.seed));
+      }
     } catch (...) {
       folder.RemoveWritten();
       throw;
@@ -621,7 +629,7 @@ PYBIND11_MODULE(_aerobox, m) {
            py::arg("flat_output"));
 
   m.def("_write_outputs", &WriteOutputs, py::arg("record"), py::arg("out_dir"), py::arg("video"),
-        py::arg("width"), py::arg("height"), py::arg("fps"), py::arg("camera"));
+        py::arg("width"), py::arg("height"), py::arg("fps"), py::arg("camera"), py::arg("report"));
   m.def("_load_class", &LoadClass);
 }
 

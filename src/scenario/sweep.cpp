@@ -246,12 +246,15 @@ Sweep ReadSweep(const std::string& path) {
             throw InputError(at, field, "expected how many runs (the first ones) write a video");
           }
           sweep.keep.video = static_cast<int>(*n);
-        } else if (keep_key == "telemetry" || keep_key == "overview") {
+        } else if (keep_key == "telemetry" || keep_key == "overview" || keep_key == "report") {
           const std::optional<bool> on = value.value<bool>();
           if (!on) throw InputError(at, field, "expected true or false");
-          (keep_key == "telemetry" ? sweep.keep.telemetry : sweep.keep.overview) = *on;
+          (keep_key == "telemetry"  ? sweep.keep.telemetry
+           : keep_key == "overview" ? sweep.keep.overview
+                                    : sweep.keep.report) = *on;
         } else {
-          throw InputError(at, field, "unknown key (expected video, telemetry or overview)");
+          throw InputError(at, field,
+                           "unknown key (expected video, telemetry, overview or report)");
         }
       }
     } else {

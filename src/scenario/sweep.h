@@ -22,11 +22,13 @@ namespace aerobox {
 //   [keep]                                    # optional: what each run writes beside its
 //   video = 0                                 #   summary.json: video.mp4 for the first N runs,
 //   telemetry = false                         #   telemetry.csv,
-//   overview = false                          #   overview.png
+//   overview = false                          #   overview.png,
+//   report = false                            #   report.html
 struct SweepKeep {
   int video = 0;  // runs (in order) that write video.mp4
   bool telemetry = false;
   bool overview = false;
+  bool report = false;  // each run's report.html (the sweep writes its own page anyway)
 };
 
 struct SweepRun {

@@ -7,7 +7,8 @@ file:// and runs the page's self-test (report.html#selftest=T), read back with -
   centres project);
 - the slider at a time puts the vehicle where telemetry.csv says;
 - a 25 s flight's page stays under 3 MB;
-- the page of a collision shows the failure and marks where it happened.
+- the page of a collision shows the failure and marks where it happened;
+- a sweep writes one page of its own.
 
 Usage: report_test.py AEROBOX_BINARY SOURCE_DIR"""
 import csv
@@ -71,6 +72,16 @@ class Report(unittest.TestCase):
                    "--turbulence", "1.0", "--seed", "1")
         assert done.returncode == 5, (done.returncode, done.stdout, done.stderr)
 
+        # a sweep of two runs: its own page
+        cls.sweep = os.path.join(cls.work.name, "sweep")
+        sweep_file = os.path.join(cls.work.name, "two.toml")
+        with open(sweep_file, "w", encoding="utf-8") as f:
+            f.write(f'scenarios = ["{TOP}/scenes/window/scenario.toml"]\nseeds = 2\n'
+                    '[grid]\n"trajectory.max_speed" = [3.0]\n')
+        done = subprocess.run([AEROBOX, "sweep", sweep_file, "--out", cls.sweep, "--quiet"],
+                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, check=False)
+        assert done.returncode == 0, done.stderr
+
     @classmethod
     def tearDownClass(cls):
         cls.work.cleanup()
@@ -123,6 +134,16 @@ class Report(unittest.TestCase):
             self.assertAlmostEqual(got, want, delta=0.05)
         for got, want in zip(result["vehicle"], end):
             self.assertAlmostEqual(got, want, delta=0.05)
+
+
+    def test_a_sweep_has_one_page(self):
+        result, console = selftest(os.path.join(self.sweep, "report.html"), 0, self.profile)
+        self.assert_clean(result, console)
+        self.assertEqual(result["rows"], 1)  # one cell of two seeds
+        self.assertEqual(result["charts"], 2)
+        # and the runs have no page of their own unless [keep] report asks
+        self.assertEqual([f for _, _, files in os.walk(os.path.join(self.sweep, "runs"))
+                          for f in files if f == "report.html"], [])
 
 
 if __name__ == "__main__":

@@ -145,8 +145,11 @@ class WindowFlights(unittest.TestCase):
                                         size=(160, 120), fps=10)
             names = set(os.listdir(out))
             for name in ("path.csv", "trajectory.csv", "telemetry.csv", "summary.json",
-                         "overview.png", "video.mp4"):
+                         "overview.png", "video.mp4", "report.html"):
                 self.assertIn(name, names)
+            with open(os.path.join(out, "report.html"), encoding="utf-8") as file:
+                page = file.read()
+            self.assertIn('"controller":"python:SE3Control"', page.replace(" ", ""))
             import json
             with open(os.path.join(out, "summary.json")) as file:
                 summary = json.load(file)

@@ -376,16 +376,18 @@ class Simulator:
         return result
 
 
-def write_outputs(result, out_dir, video=True, size=(640, 480), fps=30, camera="chase"):
+def write_outputs(result, out_dir, video=True, size=(640, 480), fps=30, camera="chase",
+                  report=True):
     """Writes what `aerobox fly` writes for a run of Simulator.run into out_dir: path.csv,
-    trajectory.csv, telemetry.csv, summary.json, overview.png and video.mp4 (H.264, unless
+    trajectory.csv, telemetry.csv, summary.json, overview.png, report.html (unless
+    report=False: the run in 3-D and in charts, for a browser) and video.mp4 (H.264, unless
     video=False). size [pixels] (W, H), fps [frames/s], camera "chase", "overview" or "top".
     Returns the folder. Bad options raise ValueError; nothing partial is left."""
     if "_record" not in result:
         raise ValueError("write_outputs: expected the dict Simulator.run returned")
     width, height = size
     return _aerobox._write_outputs(result["_record"], os.fspath(out_dir), bool(video), int(width),
-                                   int(height), int(fps), camera)
+                                   int(height), int(fps), camera, bool(report))
 
 
 def builtin_controller(sim, kind="cascade", rate=500):
