@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, flies the default scene (the window map) and plots the
-# telemetry: video, overview, telemetry, summary and plots land in renders/<scenario>/.
+# telemetry: video, overview, report.html, telemetry, summary and plots land in renders/<scenario>/.
 # Extra arguments go to `aerobox fly` (e.g. --camera overview, --quality pretty, --no-video).
 set -euo pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
