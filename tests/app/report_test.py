@@ -23,9 +23,9 @@ import unittest
 
 AEROBOX, TOP = sys.argv[1], sys.argv[2]
 CHROMIUM = ["chromium", "--headless", "--no-sandbox", "--enable-unsafe-swiftshader",
-            "--window-size=1280,900", "--virtual-time-budget=8000", "--enable-logging=stderr",
-            "--v=0", "--no-first-run", "--disable-extensions", "--disable-sync",
-            "--disable-background-networking", "--disable-component-update"]
+            "--window-size=1280,900", "--virtual-time-budget=8000", "--disable-dev-shm-usage",
+            "--enable-logging=stderr", "--v=0", "--no-first-run", "--disable-extensions",
+            "--disable-sync", "--disable-background-networking", "--disable-component-update"]
 
 
 def fly(out, *args):

@@ -62,7 +62,7 @@ code=0
 # interrupted, then resumed: only the missing runs run, and the result is the whole sweep's
 "$aerobox" sweep "$work/sweeps/speeds.toml" --out "$work/cut" -j 1 --quiet > /dev/null &
 pid=$!
-for _ in $(seq 200); do
+for _ in $(seq 1200); do  # the first run's result, within a minute even on a loaded machine
   [ -s "$work/cut/results.jsonl" ] && break
   sleep 0.05
 done
