@@ -47,6 +47,22 @@ class PythonInTheCommand(unittest.TestCase):
         for name in ("path.csv", "trajectory.csv", "telemetry.csv", "overview.png"):
             self.assertTrue(os.path.exists(os.path.join(self.out, name)), name)
 
+    def test_a_python_controller_flies_a_mission_with_obstacles_found_in_flight(self):
+        # the run is aerobox's: its planner, the sensor revealing unknown walls, replanning;
+        # the user's controller tracks the reference as it is replaced
+        scenario = os.path.join(SOURCE, "scenes", "maze_unknown", "scenario.toml")
+        run = subprocess.run([AEROBOX, "fly", scenario, "--no-video", "--quiet", "--out", self.out,
+                              "--controller", SE3, "--goal", "5,4,1.5", "--goal", "9,7,1.5"],
+                             capture_output=True, text=True, timeout=300)
+        self.assertEqual(run.returncode, 0, run.stderr)
+        s = summary(self.out)
+        self.assertEqual(s["status"], "reached goal")
+        self.assertEqual(s["controller"], SE3)
+        self.assertEqual(s["collisions"], 0)
+        self.assertGreater(s["revealed_boxes"], 0)
+        self.assertGreater(len(s["replans"]), 0)
+        self.assertEqual(len(s["goals"]), 2)
+
     def test_a_python_planner_and_trajectory_class_fly(self):
         run = fly("--planner-module", PARTS + ":WindowPlanner", "--trajectory-module",
                   PARTS + ":Smoothstep", out=self.out)
