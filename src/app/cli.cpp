@@ -17,6 +17,7 @@
 #include "app/sweep_job.h"
 #include "common/error.h"
 #include "common/number_format.h"
+#include "common/quoting.h"
 #include "mission/plan.h"
 #include "outputs/files.h"
 #include "outputs/interrupt.h"
@@ -315,15 +316,7 @@ int RunBenchBinary(const std::vector<std::string>& args, std::ostream& err) {
 // The command line as a shell reads it, for report.html.
 std::string RepeatCommand(int argc, const char* const* argv) {
   std::string command = "aerobox";
-  for (int i = 1; i < argc; ++i) {
-    const std::string word = argv[i];
-    const bool plain = !word.empty() && word.find_first_not_of(
-                                            "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                            "0123456789_-+=./,:@%") == std::string::npos;
-    std::string quoted = "'";
-    for (const char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    command += " " + (plain ? word : quoted + "'");
-  }
+  for (int i = 1; i < argc; ++i) command += " " + ShellQuoted(argv[i]);
   return command;
 }
 

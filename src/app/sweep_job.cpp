@@ -22,6 +22,7 @@
 #include "app/exit_codes.h"
 #include "app/sweep_report.h"
 #include "common/error.h"
+#include "common/quoting.h"
 #include "outputs/files.h"
 #include "outputs/interrupt.h"
 
@@ -553,11 +554,7 @@ int RunSweepSlurm(const Sweep& sweep, const SlurmOptions& options, std::ostream&
   std::error_code ec;
   fs::create_directories(folder / "logs", ec);
   if (ec) throw InputError({folder.string(), 0}, "--out", "cannot create: " + ec.message());
-  const auto quoted = [](const std::string& text) {
-    std::string q = "'";
-    for (const char c : text) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-  };
+  const auto quoted = ShellQuoted;
   const std::string binary = quoted(SelfBinary());
   const fs::path script = folder / "sweep.sbatch";
   std::ostringstream text;

@@ -6,23 +6,15 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "common/quoting.h"
+
 namespace aerobox {
-namespace {
-
-// 'text' for a POSIX shell
-std::string Quoted(const std::string& text) {
-  std::string quoted = "'";
-  for (const char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
-
-}  // namespace
 
 void RunPythonBenchmark(const std::string& window_scenario, std::ostream& out) {
-  const std::string command = "PYTHONPATH=" + Quoted(AEROBOX_PYTHON_DIR) +
-                              " PYTHONDONTWRITEBYTECODE=1 " + Quoted(AEROBOX_PYTHON_EXECUTABLE) +
-                              " " + Quoted(AEROBOX_PYTHON_BENCH) + " " + Quoted(window_scenario) +
-                              " " + Quoted(AEROBOX_PYTHON_TESTS);
+  const std::string command =
+      "PYTHONPATH=" + ShellQuoted(AEROBOX_PYTHON_DIR) + " PYTHONDONTWRITEBYTECODE=1 " +
+      ShellQuoted(AEROBOX_PYTHON_EXECUTABLE) + " " + ShellQuoted(AEROBOX_PYTHON_BENCH) + " " +
+      ShellQuoted(window_scenario) + " " + ShellQuoted(AEROBOX_PYTHON_TESTS);
   std::FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) throw std::runtime_error("cannot start " AEROBOX_PYTHON_EXECUTABLE);
   std::array<char, 4096> buffer{};

@@ -10,22 +10,18 @@
 #include <iomanip>
 #include <stdexcept>
 
+#include "common/quoting.h"
+
 namespace aerobox {
 namespace fs = std::filesystem;
 namespace {
 
-std::string Quoted(const std::string& text) {
-  std::string quoted = "'";
-  for (const char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
-
 // Wall time of one `aerobox sweep` [s].
 double TimeSweep(const std::string& binary, const fs::path& sweep, const fs::path& out, int jobs) {
   fs::remove_all(out);
-  const std::string command = Quoted(binary) + " sweep " + Quoted(sweep.string()) + " --out " +
-                              Quoted(out.string()) + " -j " + std::to_string(jobs) +
-                              " --quiet > /dev/null";
+  const std::string command = ShellQuoted(binary) + " sweep " + ShellQuoted(sweep.string()) +
+                              " --out " + ShellQuoted(out.string()) + " -j " +
+                              std::to_string(jobs) + " --quiet > /dev/null";
   const auto begin = std::chrono::steady_clock::now();
   const int status = std::system(command.c_str());
   const double wall =

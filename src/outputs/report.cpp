@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/quoting.h"
 #include "outputs/files.h"
 #include "outputs/report_page.h"
 
@@ -55,25 +56,6 @@ class Numbers {
  private:
   std::ostringstream& out_;
 };
-
-std::string Quoted(const std::string& text) {
-  std::string quoted = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      quoted += '\\';
-      quoted += c;
-    } else if (c == '<') {
-      quoted += "\\u003c";  // never "</script>" inside the page's data
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char escaped[8];
-      std::snprintf(escaped, sizeof(escaped), "\\u%04x", c);
-      quoted += escaped;
-    } else {
-      quoted += c;
-    }
-  }
-  return quoted + "\"";
-}
 
 std::string Script(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -176,7 +158,7 @@ std::string ReportOutputs::Write(const std::string& summary_json, const std::str
   for (size_t at = summary.find("</"); at != std::string::npos; at = summary.find("</", at + 3)) {
     summary.replace(at, 2, "<\\/");
   }
-  out << "{\"name\":" << Quoted(setup_.name) << ",\"command\":" << Quoted(command)
+  out << "{\"name\":" << JsonQuoted(setup_.name) << ",\"command\":" << JsonQuoted(command)
       << ",\"summary\":" << summary << ",\"plan\":" << plan_json_ << ",\"bounds\":[";
   n.Point(map.bounds.min);
   out << ",";
@@ -185,7 +167,7 @@ std::string ReportOutputs::Write(const std::string& summary_json, const std::str
   for (size_t i = 0; i < map.boxes.size(); ++i) {
     const Box& box = map.boxes[i];
     if (i) out << ",";
-    out << "{\"name\":" << Quoted(box.name) << ",\"min\":";
+    out << "{\"name\":" << JsonQuoted(box.name) << ",\"min\":";
     n.Point(box.extent.min);
     out << ",\"max\":";
     n.Point(box.extent.max);
@@ -204,8 +186,8 @@ std::string ReportOutputs::Write(const std::string& summary_json, const std::str
     if (i) out << ",";
     out << "{\"t\":";
     n.Number(replans_[i].t, 3);
-    out << ",\"trigger\":" << Quoted(replans_[i].trigger)
-        << ",\"outcome\":" << Quoted(replans_[i].outcome) << ",\"abandoned\":";
+    out << ",\"trigger\":" << JsonQuoted(replans_[i].trigger)
+        << ",\"outcome\":" << JsonQuoted(replans_[i].outcome) << ",\"abandoned\":";
     n.Points(replans_[i].abandoned, 3);
     out << "}";
   }
@@ -216,8 +198,8 @@ std::string ReportOutputs::Write(const std::string& summary_json, const std::str
   n.Number(v.MaxRotorThrust());
   out << "},\"failure\":";
   if (flown_ && result_.status != FlightStatus::kReachedGoal) {
-    out << "{\"status\":" << Quoted(ToString(result_.status))
-        << ",\"obstacle\":" << Quoted(result_.obstacle) << ",\"t\":";
+    out << "{\"status\":" << JsonQuoted(ToString(result_.status))
+        << ",\"obstacle\":" << JsonQuoted(result_.obstacle) << ",\"t\":";
     n.Number(result_.time, 3);
     out << ",\"p\":";
     n.Point(end_position_);

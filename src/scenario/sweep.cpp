@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/quoting.h"
 #include "scenario/read_file.h"
 
 namespace aerobox {
@@ -39,22 +40,7 @@ std::string ValueText(const toml::node& node, const SourceLocation& where,
     return shown;
   }
   if (const auto* b = node.as_boolean()) return b->get() ? "true" : "false";
-  if (const auto* s = node.as_string()) {
-    std::string quoted = "\"";
-    for (const char c : s->get()) {
-      if (c == '"' || c == '\\') {
-        quoted += '\\';
-        quoted += c;
-      } else if (static_cast<unsigned char>(c) < 0x20) {
-        char escaped[8];
-        std::snprintf(escaped, sizeof(escaped), "\\u%04x", c);
-        quoted += escaped;
-      } else {
-        quoted += c;
-      }
-    }
-    return quoted + "\"";
-  }
+  if (const auto* s = node.as_string()) return JsonQuoted(s->get());
   if (const auto* a = node.as_array()) {
     std::string text = "[";
     for (size_t i = 0; i < a->size(); ++i) {
