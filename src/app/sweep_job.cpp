@@ -142,17 +142,37 @@ std::map<std::string, Json> ReadResults(const fs::path& file, bool* partial_tail
   return results;
 }
 
-// Appends whole lines to a results file that this process alone writes (an exclusive lock).
+// "<results>.lock", held while a sweep reads, repairs and appends its results file, so that two
+// processes never run the same shard into one folder; removed when released.
+class ResultsLock {
+ public:
+  explicit ResultsLock(const fs::path& results) : path_(results.string() + ".lock") {
+    fd_ = open(path_.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0) throw InputError({path_, 0}, "--out", "cannot write into the folder");
+    if (flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      close(fd_);
+      throw InputError({results.string(), 0}, "--out",
+                       "another aerobox sweep is running into these results now");
+    }
+  }
+  ~ResultsLock() {
+    unlink(path_.c_str());
+    close(fd_);
+  }
+  ResultsLock(const ResultsLock&) = delete;
+  ResultsLock& operator=(const ResultsLock&) = delete;
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+};
+
+// Appends whole lines to a results file (under its ResultsLock).
 class ResultsFile {
  public:
   explicit ResultsFile(const fs::path& path) : path_(path) {
     fd_ = open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
     if (fd_ < 0) throw InputError({path.string(), 0}, "--out", "cannot write the results");
-    if (flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-      close(fd_);
-      throw InputError({path.string(), 0}, "--out",
-                       "another aerobox sweep is writing these results now");
-    }
   }
   ~ResultsFile() { close(fd_); }
   ResultsFile(const ResultsFile&) = delete;
@@ -363,6 +383,7 @@ int RunSweep(const Sweep& sweep, const SweepOptions& options, std::ostream& out,
   }
   const fs::path folder = PrepareFolder(options.out_dir, "renders/" + sweep.name);
   const fs::path results_path = folder / ResultsName(shard);
+  const ResultsLock lock(results_path);
   const Json manifest = Manifest(sweep);
   bool partial_tail = false;
   std::map<std::string, Json> done;
@@ -372,7 +393,6 @@ int RunSweep(const Sweep& sweep, const SweepOptions& options, std::ostream& out,
                        "holds results already: --resume runs only the runs without one, or "
                        "give another --out");
     }
-    if (fs::exists(folder / "sweep.json")) CommonManifest({folder});
     std::ifstream in(folder / "sweep.json");
     const Json before = Json::parse(in, nullptr, false);
     if (!before.is_discarded() && before["runs"] != manifest["runs"]) {
