@@ -145,8 +145,9 @@ std::string SweepPage() {
 <h1>Sweep <span id="name"></span></h1>
 <p id="totals"></p>
 <p>Per cell (a scenario and one value of each grid key, over the seeds): flight time over the
-runs that reached the goal, tracking RMS over the runs that flew, the minimum clearance as the
-median and the 10th percentile (90 % of the runs kept at least that much).</p>
+runs that reached the goal, tracking RMS over the runs that flew; each as the median and the
+90th percentile, and the minimum clearance also as the 10th percentile (90 % of the runs kept at
+least that much).</p>
 <table id="cells"></table>
 <div class="chart"><canvas id="success"></canvas></div>
 <div class="chart"><canvas id="tracking"></canvas></div>
@@ -164,7 +165,8 @@ document.getElementById('totals').textContent = D.runs + ' runs in ' + D.cells.l
 const shown = (v, d) => (v === null || v === undefined) ? '-' : Number(v).toFixed(d);
 const table = document.getElementById('cells');
 const head = ['scenario', ...D.keys, 'runs', 'reached', 'flight time median / p90 [s]',
-              'tracking RMS median / p90 [m]', 'min clearance median / p10 [m]', 'failures'];
+              'tracking RMS median / p90 [m]', 'min clearance median / p90 / p10 [m]',
+              'failures'];
 const row = (cells, tag) => {
   const tr = document.createElement('tr');
   for (const c of cells) {
@@ -183,7 +185,8 @@ for (const c of D.cells) {
   const tr = row([c.scenario, ...values, c.runs, c.reached + '/' + c.results + ' (' + shown(rate, 0) + ' %)',
                   shown(c.flight_time[0], 2) + ' / ' + shown(c.flight_time[1], 2),
                   shown(c.tracking_rms[0], 4) + ' / ' + shown(c.tracking_rms[1], 4),
-                  shown(c.clearance[0], 3) + ' / ' + shown(c.clearance[1], 3),
+                  shown(c.clearance[0], 3) + ' / ' + shown(c.clearance[1], 3) + ' / ' +
+                      shown(c.clearance[2], 3),
                   c.failures || 'none'], 'td');
   if (c.reached < c.runs) tr.className = 'bad';
   labels.push([c.scenario.replace(/\/scenario\.toml$/, ''), ...D.keys.map((k, i) => k + '=' + values[i])].join(', '));
@@ -269,8 +272,9 @@ std::vector<std::string> WriteSweepReport(const Json& manifest,
      << total << " runs in " << cells.size() << " cells; " << with_result << " have a result, "
      << reached << " reached their goal.\n\n"
      << "Per cell (a scenario and one value of each grid key, over the seeds): flight time over "
-        "the runs that reached the goal, tracking RMS over the runs that flew, minimum clearance "
-        "as the median and the 10th percentile (90 % of the runs kept at least that much).\n\n"
+        "the runs that reached the goal, tracking RMS over the runs that flew; each as the median "
+        "and the 90th percentile, and the minimum clearance also as the 10th percentile (90 % of "
+        "the runs kept at least that much).\n\n"
      << "| scenario |";
   csv << "scenario";
   for (const std::string& key : keys) {
@@ -278,11 +282,12 @@ std::vector<std::string> WriteSweepReport(const Json& manifest,
     csv << "," << CsvField(key);
   }
   md << " runs | reached | flight time median / p90 [s] | tracking RMS median / p90 [m] | min "
-        "clearance median / p10 [m] | failures |\n|---|";
+        "clearance median / p90 / p10 [m] | failures |\n|---|";
   for (size_t i = 0; i < keys.size(); ++i) md << "---|";
   md << "---|---|---|---|---|---|\n";
   csv << ",runs,results,reached,success_rate,flight_time_median_s,flight_time_p90_s,"
-         "tracking_rms_median_m,tracking_rms_p90_m,min_clearance_median_m,min_clearance_p10_m\n";
+         "tracking_rms_median_m,tracking_rms_p90_m,min_clearance_median_m,min_clearance_p90_m,"
+         "min_clearance_p10_m\n";
   std::vector<std::string> labels;
   std::vector<double> success, rms_median, rms_p90;
   Json page_cells = Json::array();  // report.html's data
@@ -309,14 +314,16 @@ std::vector<std::string> WriteSweepReport(const Json& manifest,
     };
     md << " " << cell.runs << " | " << cell.reached << "/" << cell.results << " ("
        << Number(rate, 0) << " %) | " << pair(cell.flight_time, 0.9, 2) << " | "
-       << pair(cell.tracking_rms, 0.9, 4) << " | " << pair(cell.clearance, 0.1, 3) << " | "
-       << (failures.empty() ? "none" : failures) << " |\n";
+       << pair(cell.tracking_rms, 0.9, 4) << " | " << pair(cell.clearance, 0.9, 3)
+       << (cell.clearance.empty() ? "" : " / " + Number(Percentile(cell.clearance, 0.1), 3))
+       << " | " << (failures.empty() ? "none" : failures) << " |\n";
     csv << "," << cell.runs << "," << cell.results << "," << cell.reached << ","
         << Number(rate / 100, 4) << "," << Number(Percentile(cell.flight_time, 0.5), 4) << ","
         << Number(Percentile(cell.flight_time, 0.9), 4) << ","
         << Number(Percentile(cell.tracking_rms, 0.5), 6) << ","
         << Number(Percentile(cell.tracking_rms, 0.9), 6) << ","
         << Number(Percentile(cell.clearance, 0.5), 6) << ","
+        << Number(Percentile(cell.clearance, 0.9), 6) << ","
         << Number(Percentile(cell.clearance, 0.1), 6) << "\n";
     const auto value = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
     page_cells.push_back(
@@ -330,7 +337,8 @@ std::vector<std::string> WriteSweepReport(const Json& manifest,
          {"tracking_rms",
           {value(Percentile(cell.tracking_rms, 0.5)), value(Percentile(cell.tracking_rms, 0.9))}},
          {"clearance",
-          {value(Percentile(cell.clearance, 0.5)), value(Percentile(cell.clearance, 0.1))}},
+          {value(Percentile(cell.clearance, 0.5)), value(Percentile(cell.clearance, 0.9)),
+           value(Percentile(cell.clearance, 0.1))}},
          {"failures", failures}});
     labels.push_back(CellLabel(cell));
     success.push_back(rate);
