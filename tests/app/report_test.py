@@ -72,6 +72,13 @@ class Report(unittest.TestCase):
                    "--turbulence", "1.0", "--seed", "1")
         assert done.returncode == 5, (done.returncode, done.stdout, done.stderr)
 
+        # walls found in flight (replans), and wind
+        cls.unknown = os.path.join(cls.work.name, "unknown")
+        done = fly(cls.unknown, os.path.join(TOP, "scenes/maze_unknown/scenario.toml"))
+        assert done.returncode == 0, done.stderr
+        cls.windy = os.path.join(cls.work.name, "windy")
+        done = fly(cls.windy, os.path.join(TOP, "scenes/windy_window/scenario.toml"))
+        assert done.returncode == 0, done.stderr
         # a sweep of two runs: its own page
         cls.sweep = os.path.join(cls.work.name, "sweep")
         sweep_file = os.path.join(cls.work.name, "two.toml")
@@ -135,6 +142,25 @@ class Report(unittest.TestCase):
         for got, want in zip(result["vehicle"], end):
             self.assertAlmostEqual(got, want, delta=0.05)
 
+
+    def test_revealed_boxes_replans_and_wind_show_in_time(self):
+        with open(os.path.join(self.unknown, "summary.json"), encoding="utf-8") as f:
+            summary = json.load(f)
+        never = summary["unknown_boxes"] - summary["revealed_boxes"]
+        page = os.path.join(self.unknown, "report.html")
+        start, console = selftest(page, 0, self.profile)
+        self.assert_clean(start, console)
+        end, console = selftest(page, summary["flight_time_s"], self.profile)
+        self.assert_clean(end, console)
+        # faint until revealed: more at the start than at the end, where only the never seen are
+        self.assertGreater(start["faint_boxes"], end["faint_boxes"])
+        self.assertEqual(end["faint_boxes"], never)
+        self.assertEqual(start["abandoned_shown"], 0)
+        self.assertEqual(end["abandoned_shown"], len(summary["replans"]))
+        windy, console = selftest(os.path.join(self.windy, "report.html"), 3.0, self.profile)
+        self.assert_clean(windy, console)
+        self.assertTrue(windy["wind_arrow"])
+        self.assertFalse(end["wind_arrow"])  # still air in the maze
 
     def test_a_sweep_has_one_page(self):
         result, console = selftest(os.path.join(self.sweep, "report.html"), 0, self.profile)
