@@ -490,6 +490,10 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
                     "run the share i/N of the runs (run k belongs to shard k mod N); default: "
                     "from SLURM_ARRAY_TASK_ID, _MIN and _COUNT when set, else all");
   sweep->add_flag("--quiet", sweep_quiet, "no progress bar");
+  bool sweep_list = false;
+  sweep->add_flag("--list", sweep_list,
+                  "print the runs (index, id, scenario, seed, grid values) and the shard's share, "
+                  "then stop: nothing runs or is written");
   std::vector<std::string> merge_folders;
   std::string merge_out;
   CLI::App* merge =
@@ -539,6 +543,7 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
       }
       if (!shard_text.empty()) sweep_options.shard = ParseShard(shard_text, "--shard");
       sweep_options.progress = !sweep_quiet;
+      if (sweep_list) return ListSweep(ReadSweep(sweep_file), sweep_options, out);
       return RunSweep(ReadSweep(sweep_file), sweep_options, out, err);
     }
     if (fly->parsed()) {

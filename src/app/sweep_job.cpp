@@ -502,6 +502,29 @@ int RunSweep(const Sweep& sweep, const SweepOptions& options, std::ostream& out,
   return kExitReachedGoal;
 }
 
+int ListSweep(const Sweep& sweep, const SweepOptions& options, std::ostream& out) {
+  const std::optional<Shard> from_slurm = options.shard ? std::nullopt : SlurmShard();
+  const Shard shard = options.shard.value_or(from_slurm.value_or(Shard()));
+  size_t listed = 0;
+  out << "index  id                scenario  seed  grid\n";
+  for (const SweepRun& run : sweep.runs) {
+    if (!shard.Contains(run)) continue;
+    ++listed;
+    out << std::setw(5) << run.index << "  " << run.id << "  " << run.label << "  " << run.seed
+        << " ";
+    for (const Setting& s : run.settings) out << " " << s.key << "=" << s.value;
+    out << (run.video ? "  (video)" : "") << "\n";
+  }
+  out << "sweep " << sweep.name << ": " << sweep.runs.size() << " runs (" << sweep.scenarios.size()
+      << " scenario(s) x "
+      << sweep.runs.size() / std::max<size_t>(1, sweep.scenarios.size()) /
+             std::max<size_t>(1, sweep.seeds.size())
+      << " grid cell(s) x " << sweep.seeds.size() << " seed(s))";
+  if (!shard.Whole()) out << "; shard " << shard.index << "/" << shard.count << ": " << listed;
+  out << "\n";
+  return kExitReachedGoal;
+}
+
 int RunSweepMerge(const std::vector<std::string>& folders, const std::string& out_dir,
                   std::ostream& out, std::ostream& err) {
   if (folders.empty()) throw InputError({"command line", 0}, "merge", "expected a folder");

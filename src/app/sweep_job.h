@@ -24,6 +24,9 @@ struct SweepOptions {
 // the report. Throws InputError for bad options before any run.
 int RunSweep(const Sweep& sweep, const SweepOptions& options, std::ostream& out, std::ostream& err);
 
+// Prints the runs the options select (the shard's, or all), one line each, and runs nothing.
+int ListSweep(const Sweep& sweep, const SweepOptions& options, std::ostream& out);
+
 // Joins the results of the folders (shards of one sweep) into `out_dir` (default: the first)
 // and writes the report; exit 1 when some run has no result.
 int RunSweepMerge(const std::vector<std::string>& folders, const std::string& out_dir,

@@ -20,6 +20,11 @@ seeds = [1, 2, 3]
 [keep]
 video = 1
 TOML
+# --list: the runs, and nothing run or written
+"$aerobox" sweep "$work/sweeps/speeds.toml" --out "$work/listed" --list > "$work/list.out"
+[ "$(grep -c 'scenario.toml' "$work/list.out")" -eq 6 ] || fail "--list: $(cat "$work/list.out")"
+grep -q "6 runs (1 scenario(s) x 2 grid cell(s) x 3 seed(s))" "$work/list.out" || fail "--list total"
+[ ! -e "$work/listed" ] || fail "--list wrote $work/listed"
 "$aerobox" sweep "$work/sweeps/speeds.toml" --out "$work/whole" -j 2 --quiet > "$work/whole.out"
 [ "$(wc -l < "$work/whole/results.jsonl")" -eq 6 ] || fail "6 result lines expected"
 for file in report.md report.csv success.svg tracking.svg sweep.json; do
