@@ -306,6 +306,12 @@ std::optional<Reference> Replanner::Replan(double t, double tr, int goals_reache
     }
   }
   event.planning_time = Seconds(planning);
+  const auto replaced_by = [&event](const PiecewiseTrajectory& t) {
+    for (double s = 0; s <= t.duration() + 1e-9; s += 0.05) {
+      event.replacement.push_back(t.Evaluate3(s, kPosition));
+      event.replacement_speeds.push_back(t.Evaluate3(s, kVelocity).norm());
+    }
+  };
   const auto done = [&](std::optional<Reference> reference, const std::string& outcome) {
     event.outcome = outcome;
     event.latency = Seconds(begin);
@@ -323,6 +329,7 @@ std::optional<Reference> Replanner::Replan(double t, double tr, int goals_reache
       braking_ = false;
       attempts_ = 0;
       path_ = path;
+      replaced_by(next.trajectory);
       return done(Splice(current, th, next.trajectory),
                   trigger == "retry after braking" ? "replanned after braking" : "replanned");
     }
@@ -351,6 +358,7 @@ std::optional<Reference> Replanner::Replan(double t, double tr, int goals_reache
   if (brake.status != TrajectoryStatus::kSolved) {
     return done(std::nullopt, why + ", and no room to brake");
   }
+  replaced_by(brake.trajectory);
   return done(Splice(current, th, brake.trajectory),
               found ? "braking (no trajectory)" : "braking (no path)");
 }

@@ -52,6 +52,10 @@ struct ReplanEvent {
   double path_length = 0.0;     // [m] of the new path
   std::string outcome;          // "replanned", "braking", "no path", ...
   std::vector<Vec3> abandoned;  // the rest of the path given up [m]
+  // the trajectory that replaced it, every 0.05 s from where it joins [m] and its speed [m/s]
+  // (empty when nothing replaced it)
+  std::vector<Vec3> replacement;
+  std::vector<double> replacement_speeds;
 };
 
 // The deceleration a braking vehicle may count on [m/s^2]: 60 % of what its tilt limit gives,

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -117,7 +118,26 @@ void RenderOutputs::OnDiscovery(const std::vector<double>& revealed_at,
     }
   }
   for (; replans_drawn_ < replans.size(); ++replans_drawn_) {
-    overlay_.abandoned.push_back(replans[replans_drawn_].abandoned);
+    const ReplanEvent& replan = replans[replans_drawn_];
+    overlay_.abandoned.push_back(replan.abandoned);
+    // the trajectory drawn is the one in force: up to where the replacement joins, then it
+    if (!replan.replacement.empty() && !overlay_.trajectory.empty()) {
+      size_t join = 0;
+      double nearest = std::numeric_limits<double>::infinity();
+      for (size_t i = 0; i < overlay_.trajectory.size(); ++i) {
+        const double d = (overlay_.trajectory[i] - replan.replacement.front()).norm();
+        if (d < nearest) {
+          nearest = d;
+          join = i;
+        }
+      }
+      overlay_.trajectory.resize(join);
+      overlay_.speeds.resize(join);
+      overlay_.trajectory.insert(overlay_.trajectory.end(), replan.replacement.begin(),
+                                 replan.replacement.end());
+      overlay_.speeds.insert(overlay_.speeds.end(), replan.replacement_speeds.begin(),
+                             replan.replacement_speeds.end());
+    }
   }
 }
 

@@ -189,7 +189,14 @@ std::string ReportOutputs::Write(const std::string& summary_json, const std::str
     out << ",\"trigger\":" << JsonQuoted(replans_[i].trigger)
         << ",\"outcome\":" << JsonQuoted(replans_[i].outcome) << ",\"abandoned\":";
     n.Points(replans_[i].abandoned, 3);
-    out << "}";
+    out << ",\"replacement\":";
+    n.Points(replans_[i].replacement, 3);
+    out << ",\"speeds\":[";
+    for (size_t k = 0; k < replans_[i].replacement_speeds.size(); ++k) {
+      if (k) out << ",";
+      n.Number(replans_[i].replacement_speeds[k], 3);
+    }
+    out << "]}";
   }
   const QuadParams& v = setup_.vehicle;
   out << "],\"vehicle\":{\"size\":";

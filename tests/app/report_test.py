@@ -157,6 +157,12 @@ class Report(unittest.TestCase):
         self.assertEqual(end["faint_boxes"], never)
         self.assertEqual(start["abandoned_shown"], 0)
         self.assertEqual(end["abandoned_shown"], len(summary["replans"]))
+        # the trajectory drawn is the one in force: the planned one first, the last one at the end
+        replaced = [r for r in summary["replans"]
+                    if r["outcome"].startswith("replanned") or r["outcome"].startswith("braking")]
+        self.assertEqual(start["trajectory_stages"], 1 + len(replaced))
+        self.assertEqual(start["trajectory_stage"], 0)
+        self.assertEqual(end["trajectory_stage"], len(replaced))
         windy, console = selftest(os.path.join(self.windy, "report.html"), 3.0, self.profile)
         self.assert_clean(windy, console)
         self.assertTrue(windy["wind_arrow"])
