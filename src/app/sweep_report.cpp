@@ -7,6 +7,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "common/quoting.h"
 #include "outputs/files.h"
 #include "outputs/report.h"
 
@@ -53,29 +54,6 @@ std::string CsvField(const std::string& text) {
   return quoted + "\"";
 }
 
-std::string Xml(const std::string& text) {
-  std::string escaped;
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        escaped += "&amp;";
-        break;
-      case '<':
-        escaped += "&lt;";
-        break;
-      case '>':
-        escaped += "&gt;";
-        break;
-      case '"':
-        escaped += "&quot;";
-        break;
-      default:
-        escaped += c;
-    }
-  }
-  return escaped;
-}
-
 std::string CellLabel(const Cell& cell) {
   std::string label = cell.scenario;
   for (const auto& [key, value] : cell.params.items()) label += ", " + key + "=" + ParamText(value);
@@ -94,11 +72,11 @@ std::string BarChart(const std::string& title, const std::string& unit,
   svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
       << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-      << "<text x=\"10\" y=\"22\" font-size=\"15\">" << Xml(title) << "</text>\n";
+      << "<text x=\"10\" y=\"22\" font-size=\"15\">" << XmlEscaped(title) << "</text>\n";
   for (size_t i = 0; i < labels.size(); ++i) {
     const int y = kHead + kRow * static_cast<int>(i);
     svg << "<text x=\"" << kLabel - 8 << "\" y=\"" << y + 15 << "\" text-anchor=\"end\">"
-        << Xml(labels[i]) << "</text>\n";
+        << XmlEscaped(labels[i]) << "</text>\n";
     if (!std::isfinite(values[i])) {
       svg << "<text x=\"" << kLabel + 4 << "\" y=\"" << y + 15 << "\">no value</text>\n";
       continue;
@@ -114,14 +92,14 @@ std::string BarChart(const std::string& title, const std::string& unit,
           << "\" stroke=\"#222\" stroke-width=\"1.5\"/>\n";
     }
     svg << "<text x=\"" << Number(kLabel + std::max(w, end) + 6, 1) << "\" y=\"" << y + 15 << "\">"
-        << Number(values[i], unit == "%" ? 0 : 2) << " " << Xml(unit) << "</text>\n";
+        << Number(values[i], unit == "%" ? 0 : 2) << " " << XmlEscaped(unit) << "</text>\n";
   }
   const int axis = kHead + kRow * static_cast<int>(labels.size()) + 4;
   svg << "<line x1=\"" << kLabel << "\" x2=\"" << kLabel + kBar << "\" y1=\"" << axis << "\" y2=\""
       << axis << "\" stroke=\"#888\"/>\n"
       << "<text x=\"" << kLabel << "\" y=\"" << axis + 16 << "\">0</text>\n"
       << "<text x=\"" << kLabel + kBar << "\" y=\"" << axis + 16 << "\" text-anchor=\"end\">"
-      << Number(top, unit == "%" ? 0 : 2) << " " << Xml(unit) << "</text>\n</svg>\n";
+      << Number(top, unit == "%" ? 0 : 2) << " " << XmlEscaped(unit) << "</text>\n</svg>\n";
   return svg.str();
 }
 
@@ -378,7 +356,7 @@ std::vector<std::string> WriteSweepReport(const Json& manifest,
     for (size_t at = json.find("</"); at != std::string::npos; at = json.find("</", at + 2)) {
       json.replace(at, 2, "<\\/");
     }
-    page.replace(page.find("AEROBOX_TITLE"), 13, Xml(name));
+    page.replace(page.find("AEROBOX_TITLE"), 13, XmlEscaped(name));
     page.replace(page.find("/*AEROBOX_CHART*/"), 17, chart_script);
     page.replace(page.find("/*AEROBOX_DATA*/"), 16, json);
     paths.push_back((out / "report.html").string());

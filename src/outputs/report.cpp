@@ -69,22 +69,6 @@ std::string Script(const std::string& path) {
   return text.str();
 }
 
-std::string Html(const std::string& text) {
-  std::string escaped;
-  for (const char c : text) {
-    if (c == '&') {
-      escaped += "&amp;";
-    } else if (c == '<') {
-      escaped += "&lt;";
-    } else if (c == '>') {
-      escaped += "&gt;";
-    } else {
-      escaped += c;
-    }
-  }
-  return escaped;
-}
-
 void Replace(std::string* text, const std::string& marker, const std::string& with) {
   const size_t at = text->find(marker);
   if (at == std::string::npos) throw std::logic_error("report page: no " + marker);
@@ -256,7 +240,7 @@ std::string ReportOutputs::Write(const std::string& summary_json, const std::str
 
   // the data last: nothing in it is taken for a marker
   std::string page = ReportPageTemplate();
-  Replace(&page, "AEROBOX_TITLE", Html(setup_.name));
+  Replace(&page, "AEROBOX_TITLE", XmlEscaped(setup_.name));
   Replace(&page, "/*AEROBOX_THREE*/", Script(scripts.three));
   Replace(&page, "/*AEROBOX_ORBIT_CONTROLS*/", Script(scripts.orbit_controls));
   Replace(&page, "/*AEROBOX_CHART*/", Script(scripts.chart));

@@ -3,34 +3,9 @@
 #include <cassert>
 
 #include "common/number_format.h"
+#include "common/quoting.h"
 
 namespace aerobox::scene_detail {
-namespace {
-
-std::string Escape(std::string_view text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
-}  // namespace
 
 void XmlWriter::Start(std::string_view name, Attributes attributes) {
   text_.append(2 * open_.size(), ' ');
@@ -40,7 +15,7 @@ void XmlWriter::Start(std::string_view name, Attributes attributes) {
     text_ += ' ';
     text_ += key;
     text_ += "=\"";
-    text_ += Escape(value);
+    text_ += XmlEscaped(value);
     text_ += '"';
   }
 }
