@@ -1,7 +1,5 @@
 #include "app/cli.h"
 
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -18,6 +16,7 @@
 #include "common/error.h"
 #include "common/number_format.h"
 #include "common/quoting.h"
+#include "common/subprocess.h"
 #include "mission/plan.h"
 #include "outputs/files.h"
 #include "outputs/interrupt.h"
@@ -208,11 +207,15 @@ int RunScene(const FlightSetup& setup, const std::string& output, std::ostream& 
   return kExitReachedGoal;
 }
 
-int PlanInto(const FlightSetup& setup, const std::string& folder, std::ostream& out) {
+// Plans into `output`'s staging folder; RunPlan commits it.
+int PlanInto(const FlightSetup& setup, const OutputFolder& output, std::ostream& out,
+             std::ostream& err) {
   if (const std::string warning = LimitsWarning(setup); !warning.empty()) {
     out << "warning: " << warning << "\n";
   }
+  err << "plan " << setup.name << ": planning\n";
   const PlanOutcome plan = PlanFlight(setup);
+  const std::filesystem::path folder(output.staging());
   out << DescribeMoves(plan.start, plan.goal);
   const PlanStats& stats = plan.result.stats;
   std::ostringstream timing;
@@ -234,8 +237,8 @@ int PlanInto(const FlightSetup& setup, const std::string& folder, std::ostream& 
     out << std::fixed << std::setprecision(3) << "lattice: " << plan.lattice->nodes << " nodes, "
         << plan.lattice->edges << " edges, built in " << plan.lattice->build_time << " s\n";
   }
-  const std::string path_file = (std::filesystem::path(folder) / "path.csv").string();
-  WriteFileAtomically(path_file, PathCsv(plan.result.path));
+  const std::string path_file = (std::filesystem::path(output.path()) / "path.csv").string();
+  WriteFileAtomically((folder / "path.csv").string(), PathCsv(plan.result.path));
   std::ostringstream line;
   line << std::fixed << std::setprecision(2) << "plan " << setup.name << ": solved, "
        << plan.result.path.size() << " waypoints, " << stats.final_cost << " m ";
@@ -259,18 +262,20 @@ int PlanInto(const FlightSetup& setup, const std::string& folder, std::ostream& 
     out << summary.str() << "\n";
     return kExitNoTrajectory;
   }
-  const std::string trajectory_file = (std::filesystem::path(folder) / "trajectory.csv").string();
-  WriteFileAtomically(trajectory_file, TrajectoryCsv(trajectory.trajectory));
+  const std::string trajectory_file =
+      (std::filesystem::path(output.path()) / "trajectory.csv").string();
+  WriteFileAtomically((folder / "trajectory.csv").string(), TrajectoryCsv(trajectory.trajectory));
   summary << "; " << t.duration << " s, max " << t.max_speed << " m/s, " << t.max_accel
           << " m/s^2 -> " << trajectory_file << "\n";
   out << summary.str();
   return kExitReachedGoal;
 }
 
-int RunPlan(const FlightSetup& setup, const std::string& out_dir, std::ostream& out) {
-  const OutputFolder output(out_dir, setup.name);
-  const int code = PlanInto(setup, output.path(), out);
-  output.RemoveStale();  // the folder holds this run's outputs only
+int RunPlan(const FlightSetup& setup, const std::string& out_dir, std::ostream& out,
+            std::ostream& err) {
+  OutputFolder output(out_dir, setup.name);
+  const int code = output.Run([&] { return PlanInto(setup, output, out, err); });
+  output.Commit();  // the folder holds this run's outputs only
   return code;
 }
 
@@ -285,32 +290,13 @@ int RunBenchBinary(const std::vector<std::string>& args, std::ostream& err) {
         << " is missing (build the aerobox-bench target)\n";
     return kExitBadInput;
   }
-  std::vector<std::string> words = {binary.string()};
-  words.insert(words.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& word : words) argv.push_back(word.data());
-  argv.push_back(nullptr);
-  pid_t child = 0;
-  if (posix_spawn(&child, binary.c_str(), nullptr, nullptr, argv.data(), environ) != 0) {
-    err << "aerobox: error: bench: cannot run " << binary.string() << "\n";
-    return kExitUnexpected;
-  }
+  ProcessSpec spec;
+  spec.argv = {binary.string()};
+  spec.argv.insert(spec.argv.end(), args.begin(), args.end());
   // Ctrl-C reaches the child too from a terminal; a SIGINT sent to this process alone is
-  // passed on, so that the benchmark never outlives the command
-  int status = 0;
-  bool forwarded = false;
-  while (true) {
-    const pid_t done = waitpid(child, &status, WNOHANG);
-    if (done == child || (done < 0 && errno != EINTR)) break;
-    if (StopRequested() && !forwarded) {
-      kill(child, SIGINT);
-      forwarded = true;
-    }
-    usleep(20000);
-  }
-  if (forwarded) return kExitInterrupted;
-  if (WIFEXITED(status)) return WEXITSTATUS(status);
-  return WIFSIGNALED(status) && WTERMSIG(status) == SIGINT ? kExitInterrupted : kExitUnexpected;
+  // passed on (RunProcess), so that the benchmark never outlives the command
+  const int code = RunProcess(spec);
+  return StopRequested() ? kExitInterrupted : code;
 }
 
 // The command line as a shell reads it, for report.html.
@@ -637,13 +623,17 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
       UsePythonModules(python_modules, &setup);
     }
     if (scene->parsed()) return RunScene(setup, output, out);
-    if (plan->parsed()) return RunPlan(setup, out_dir, out);
+    if (plan->parsed()) return RunPlan(setup, out_dir, out, err);
     if (fly->parsed()) {
       // the seed in force, so that the command repeats the run
       if (!seed_given) fly_options.command += " --seed " + std::to_string(setup.seed);
       return RunFly(setup, fly_options, out, err);
     }
     return RunCheck(setup, out);
+  } catch (const Interrupted& stop) {
+    // every output folder is as it was: a run's files are moved in only when it has ended
+    err << "\naerobox: " << stop.what() << "; no output written or changed\n";
+    return kExitInterrupted;
   } catch (const InputError& error) {
     err << "aerobox: error: " << error.what() << "\n";
     return kExitBadInput;

@@ -106,15 +106,16 @@ std::string ProfilesCsv(const PlanOutcome& plan) {
 
 int RunCompare(const std::vector<std::string>& scenarios, const std::string& out_dir,
                std::ostream& out, std::ostream& progress) {
-  const OutputFolder output(out_dir, "compare");
-  const std::string& folder = output.path();
+  std::vector<FlightSetup> setups;  // every file is read before any work
+  for (const std::string& scenario : scenarios) setups.push_back(LoadFlightSetup(scenario, {}));
+  OutputFolder output(out_dir, "compare");
+  const std::string& folder = output.staging();
   out << "| map | generator | integral snap^2 [m^2/s^7] | integral jerk^2 [m^2/s^5] | largest "
          "jerk jump [m/s^3] | max speed [m/s] | max accel [m/s^2] | rotors saturated [s] | "
          "tracking RMS [m] | flight | solve [ms] "
          "|\n|---|---|---|---|---|---|---|---|---|---|---|\n";
-  for (const std::string& scenario : scenarios) {
-    const FlightSetup setup = LoadFlightSetup(scenario, {});
-    progress << "\rcompare: " << setup.name << " ...        " << std::flush;
+  for (const FlightSetup& setup : setups) {
+    progress << "compare: " << setup.name << "\n" << std::flush;
     const PlanOutcome plan = PlanFlight(setup);
     if (plan.result.status != PlanStatus::kSolved || !plan.trajectory ||
         plan.trajectory->status != TrajectoryStatus::kSolved) {
@@ -131,10 +132,12 @@ int RunCompare(const std::vector<std::string>& scenarios, const std::string& out
           << " | " << std::setprecision(2) << 1e3 * row.solve << " |\n"
           << std::defaultfloat;
     }
-    WriteFileAtomically((std::filesystem::path(folder) / (setup.name + "_profiles.csv")).string(),
-                        ProfilesCsv(plan));
+    output.Run([&] {
+      WriteFileAtomically((std::filesystem::path(folder) / (setup.name + "_profiles.csv")).string(),
+                          ProfilesCsv(plan));
+    });
   }
-  progress << "\r" << std::string(40, ' ') << "\r" << std::flush;
+  output.Commit();
   out << "\nMethods in the profiles CSVs: 0 minsnap, 1 quintic, 2 cubic, 3 septic-full.\n";
   return kExitReachedGoal;
 }

@@ -71,9 +71,11 @@ void ValidateFlyOptions(const FlyOptions& options) {
 
 namespace {
 
-int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOptions& options,
+// Flies and writes the outputs into `output`'s staging folder; RunFly commits them.
+int FlyInto(const OutputFolder& output, const FlightSetup& setup, const FlyOptions& options,
             std::ostream& out, std::ostream& err) {
   ValidateFlyOptions(options);
+  const std::string& folder = output.staging();
   RenderOptions render;
   render.width = options.width;
   render.height = options.height;
@@ -87,7 +89,6 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
   render.show_tree = options.show_tree;
 
   // the outputs, each an observer of the run
-  StopOnRequest stop(&StopRequested());
   const int every =
       options.telemetry_rate > 0
           ? static_cast<int>(std::lround(setup.controller.rate / options.telemetry_rate))
@@ -98,22 +99,19 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
   if (options.video || options.overview || options.frames_every > 0) {
     pictures.emplace(folder, setup, render, err);
   }
-  // the watchdog removes the video's temporary file if it has to end the process
-  const std::string video_partial =
-      VideoEncoder::TemporaryPath((fs::path(folder) / "video.mp4").string());
-  if (options.video) RegisterPartialFile(video_partial);
-  struct Unregister {
-    std::string path;
-    ~Unregister() { UnregisterPartialFile(path); }
-  } unregister{video_partial};
   std::optional<ProgressLine> progress;
+  std::optional<PhaseLines> phases;
   MissionParts parts;
-  parts.observers = {&stop, &csv};
+  parts.observers = {&csv};
   if (pictures) parts.observers.push_back(&*pictures);
   std::optional<ReportOutputs> report;
   if (options.report) {
     report.emplace(folder, setup);
     parts.observers.push_back(&*report);
+  }
+  if (options.progress) {
+    phases.emplace("fly " + setup.name, err);
+    parts.observers.push_back(&*phases);
   }
   if (options.video && options.progress && isatty(STDERR_FILENO)) {
     progress.emplace(&*pictures, err);
@@ -124,14 +122,8 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
   }
   FlightSetup recorded = setup;
   recorded.planning.rrt.record_tree = options.show_tree;
-  MissionResult result;
-  try {
-    result = RunMission(recorded, parts);
-  } catch (const Interrupted&) {
-    progress.reset();
-    err << "aerobox: interrupted: no video, telemetry or summary written\n";
-    return kExitInterrupted;  // the encoder's and the telemetry's destructors remove their files
-  }
+  if (options.progress) err << "fly " << setup.name << ": planning\n";
+  const MissionResult result = RunMission(recorded, parts);
   progress.reset();
 
   // summary.json and the table
@@ -232,7 +224,7 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
   } else {
     table << "none (no obstacles)\n";
   }
-  table << "  files       " << folder
+  table << "  files       " << output.path()
         << (options.telemetry ? "/{path,trajectory,telemetry}.csv" : "/{path,trajectory}.csv")
         << ", summary.json" << (options.overview ? ", overview.png" : "")
         << (options.report ? ", report.html" : "")
@@ -249,18 +241,11 @@ int FlyInto(const std::string& folder, const FlightSetup& setup, const FlyOption
 
 int RunFly(const FlightSetup& setup, const FlyOptions& options, std::ostream& out,
            std::ostream& err) {
-  const OutputFolder folder(options.out_dir, setup.name);
-  int code = kExitUnexpected;
-  try {
-    code = FlyInto(folder.path(), setup, options, out, err);
-  } catch (...) {
-    // a run that ends in an exception (a user's Python code, an unwritable disk) leaves the
-    // folder as it found it
-    folder.RemoveWritten();
-    throw;
-  }
-  // the folder holds this run's outputs only (an interrupted run keeps what it had)
-  if (code != kExitInterrupted) folder.RemoveStale();
+  // the folder keeps its earlier run until this one has ended (an exception, Ctrl-C included,
+  // leaves it untouched)
+  OutputFolder folder(options.out_dir, setup.name);
+  const int code = folder.Run([&] { return FlyInto(folder, setup, options, out, err); });
+  folder.Commit();
   return code;
 }
 

@@ -3,7 +3,6 @@
 #include <fcntl.h>
 #include <pthread.h>
 #include <sched.h>
-#include <spawn.h>
 #include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -23,10 +22,9 @@
 #include "app/sweep_report.h"
 #include "common/error.h"
 #include "common/quoting.h"
+#include "common/subprocess.h"
 #include "outputs/files.h"
 #include "outputs/interrupt.h"
-
-extern char** environ;
 
 namespace aerobox {
 namespace fs = std::filesystem;
@@ -219,29 +217,12 @@ std::vector<std::string> FlyCommand(const SweepRun& run, const Sweep& sweep,
 }
 
 pid_t Spawn(const std::vector<std::string>& command, const fs::path& log) {
-  // the run starts with no signal blocked (the sweep blocks SIGCHLD to wait for it)
-  posix_spawnattr_t attributes;
-  posix_spawnattr_init(&attributes);
-  sigset_t none;
-  sigemptyset(&none);
-  posix_spawnattr_setsigmask(&attributes, &none);
-  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  std::vector<std::string> words = command;
-  std::vector<char*> argv;
-  for (std::string& word : words) argv.push_back(word.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  const int code = posix_spawn(&pid, argv[0], &actions, &attributes, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  posix_spawnattr_destroy(&attributes);
-  if (code != 0) throw std::runtime_error("cannot start " + command[0]);
-  return pid;
+  ProcessSpec spec;
+  spec.argv = command;
+  spec.output = log.string();
+  spec.error_to_output = true;
+  spec.null_input = true;
+  return StartProcess(spec);
 }
 
 std::string LastLine(const fs::path& file) {
@@ -444,7 +425,7 @@ int RunSweep(const Sweep& sweep, const SweepOptions& options, std::ostream& out,
   int failed = 0;
   bool interrupted = false;
   const Clock::time_point begin = Clock::now();
-  while (next < todo.size() || !running.empty()) {
+  while ((!interrupted && next < todo.size()) || !running.empty()) {
     if (StopRequested() && !interrupted) {
       interrupted = true;
       for (const Child& child : running) kill(child.pid, SIGINT);
@@ -649,20 +630,15 @@ int RunSweepSlurm(const Sweep& sweep, const SlurmOptions& options, std::ostream&
     out << "submit it with: bash " << script.string() << "   (the array, then the merge)\n";
     return kExitReachedGoal;
   }
-  std::vector<std::string> words = {"/bin/bash", script.string()};
-  if (options.wait) words.push_back("--wait");
-  std::vector<char*> argv;
-  for (std::string& word : words) argv.push_back(word.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  if (posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0) {
-    err << "aerobox: error: cannot run /bin/bash\n";
-    return kExitUnexpected;
+  ProcessSpec spec;
+  spec.argv = {"/bin/bash", script.string()};
+  if (options.wait) spec.argv.push_back("--wait");
+  const int code = RunProcess(spec);
+  if (StopRequested()) {
+    err << "aerobox: interrupted: the jobs already submitted keep running (scancel stops them)\n";
+    return kExitInterrupted;
   }
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+  if (code != 0) {
     err << "aerobox: error: " << script.string()
         << (options.wait
                 ? " failed: sbatch's message, or the merge's (logs/merge-*.log), says why\n"

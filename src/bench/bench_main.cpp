@@ -19,9 +19,11 @@
 #include "bench/solver_comparison.h"
 #include "bench/sweep_benchmark.h"
 #include "common/error.h"
+#include "common/stop.h"
 #include "geometry/collision_world.h"
 #include "mission/mission.h"
 #include "mission/plan.h"
+#include "outputs/interrupt.h"
 #include "planning/path_simplify.h"
 #include "scenario/scenario.h"
 #include "trajectory/point_mass.h"
@@ -80,6 +82,7 @@ int RunBench(const std::string& sections, const std::string& scenes, const std::
              const std::string& city, int seeds, double seconds, const std::string& robustness_csv,
              std::ostream& out, std::ostream& err) {
   const auto wanted = [&sections](const char* name) {
+    ThrowIfStopRequested("starting the next section (the tables above are complete)");
     return sections == "all" ||
            ("," + sections + ",").find(std::string(",") + name + ",") != std::string::npos;
   };
@@ -213,6 +216,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& error) {
     return app.exit(error) == 0 ? 0 : 2;
   }
+  // Ctrl-C: every section stops at its next check, exit 130 (outputs/interrupt.h)
+  aerobox::InstallInterruptHandler();
   try {
     if (!robustness_csv.empty()) {
       // checked before any work: its folder exists
@@ -224,6 +229,11 @@ int main(int argc, char** argv) {
     }
     return aerobox::RunBench(bench_sections, bench_scenes, bench_maps, bench_city, bench_seeds,
                              bench_seconds, robustness_csv, std::cout, std::cerr);
+  } catch (const aerobox::Interrupted& stop) {
+    std::cout << std::flush;
+    std::cerr << "\naerobox bench: interrupted while " << stop.during()
+              << "; the tables printed above are complete\n";
+    return aerobox::kInterruptedExitCode;
   } catch (const aerobox::InputError& error) {
     std::cerr << "aerobox bench: error: " << error.what() << "\n";
     return 2;

@@ -13,6 +13,7 @@
 #include <chrono>
 
 #include "bench/planner_comparison.h"
+#include "common/stop.h"
 
 namespace aerobox {
 namespace {
@@ -92,7 +93,11 @@ AnytimeRun RunOmpl(const CollisionWorld& world, const PlanningProblem& problem, 
         if (run.time_to_first < 0) run.time_to_first = now;
         run.history.emplace_back(now, cost.value());
       });
-  const ob::PlannerStatus status = planner->solve(ob::timedPlannerTerminationCondition(seconds));
+  // its time budget, or Ctrl-C (common/stop.h)
+  const ob::PlannerStatus status = planner->solve(ob::plannerOrTerminationCondition(
+      ob::timedPlannerTerminationCondition(seconds),
+      ob::PlannerTerminationCondition([] { return StopRequested(); })));
+  ThrowIfStopRequested("planning with OMPL's RRT*");
   run.iterations = static_cast<long>(planner->numIterations());
   if (status == ob::PlannerStatus::EXACT_SOLUTION) {
     const double now =

@@ -1,6 +1,5 @@
 #include "bench/sweep_benchmark.h"
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -11,6 +10,8 @@
 #include <stdexcept>
 
 #include "common/quoting.h"
+#include "common/stop.h"
+#include "common/subprocess.h"
 
 namespace aerobox {
 namespace fs = std::filesystem;
@@ -19,15 +20,18 @@ namespace {
 // Wall time of one `aerobox sweep` [s].
 double TimeSweep(const std::string& binary, const fs::path& sweep, const fs::path& out, int jobs) {
   fs::remove_all(out);
-  const std::string command = ShellQuoted(binary) + " sweep " + ShellQuoted(sweep.string()) +
-                              " --out " + ShellQuoted(out.string()) + " -j " +
-                              std::to_string(jobs) + " --quiet > /dev/null";
+  ProcessSpec spec;
+  spec.argv = {binary,       "sweep", sweep.string(),       "--out",
+               out.string(), "-j",    std::to_string(jobs), "--quiet"};
+  spec.output = "/dev/null";
   const auto begin = std::chrono::steady_clock::now();
-  const int status = std::system(command.c_str());
+  const int code = RunProcess(spec);
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    throw std::runtime_error("aerobox sweep failed: " + command);
+  ThrowIfStopRequested("timing aerobox sweep (its finished runs are in " + out.string() + ")");
+  if (code != 0) {
+    throw std::runtime_error("aerobox sweep failed (exit " + std::to_string(code) +
+                             "): " + ShellQuoted(binary) + " sweep " + ShellQuoted(sweep.string()));
   }
   return wall;
 }

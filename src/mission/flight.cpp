@@ -1,6 +1,7 @@
 #include "mission/flight.h"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -10,6 +11,7 @@
 #include "common/number_format.h"
 #include "common/rates.h"
 #include "common/seed.h"
+#include "common/stop.h"
 #include "scene/scene_mjcf.h"
 #include "vehicle/model_names.h"
 
@@ -139,6 +141,12 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
   const double t0 = sim->time();
   for (long k = 0;; ++k) {
     const double t = sim->time() - t0;
+    // Ctrl-C ends the run here, between two physics steps
+    ThrowIfStopRequested([t] {
+      char at[32];
+      std::snprintf(at, sizeof(at), "%.2f", t);
+      return "flying (at t = " + std::string(at) + " s)";
+    });
     const State state = sim->VehicleState();
     if (!state.p_W.allFinite() || !state.v_W.allFinite() || !state.q_WB.coeffs().allFinite() ||
         !state.w_B.allFinite()) {

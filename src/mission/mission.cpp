@@ -4,6 +4,7 @@
 #include <future>
 #include <optional>
 
+#include "common/stop.h"
 #include "geometry/collision_world.h"
 #include "scene/scene_mjcf.h"
 
@@ -63,6 +64,14 @@ MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
     } else {
       result.plan = PlanFlight(setup);
     }
+  } catch (const Interrupted& stop) {
+    // Ctrl-C while the scene thread is still inside MuJoCo's GL set-up (mjr_makeContext: about
+    // 0.3 s of texture set-up on a CPU renderer), which nothing can stop: rather than wait for
+    // it, the process ends here, its temporary files removed
+    if (scene.valid() && scene.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
+      ExitInterrupted(stop.during());
+    }
+    throw;
   } catch (...) {
     if (scene.valid()) scene.wait();
     throw;

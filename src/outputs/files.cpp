@@ -10,6 +10,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
@@ -24,6 +26,14 @@ namespace fs = std::filesystem;
 std::string PartialSuffix() { return "." + std::to_string(getpid()) + ".partial"; }
 
 namespace {
+
+// a run's staging folder, inside its output folder, and the list of what the last run wrote
+const std::string kStagingPrefix = ".aerobox-staging.";
+constexpr char kManifest[] = ".aerobox-files";
+// what aerobox wrote into a folder before it kept a manifest there
+constexpr const char* kLegacyOutputs[] = {"path.csv",     "trajectory.csv", "telemetry.csv",
+                                          "summary.json", "overview.png",   "video.mp4",
+                                          "report.html",  "frames"};
 
 // An injected write failure for this file (see common/fault_injection.h).
 bool WriteFails(const std::string& path) {
@@ -106,8 +116,7 @@ void StreamingFile::Commit() {
   }
 }
 
-OutputFolder::OutputFolder(const std::string& requested, const std::string& name)
-    : run_start_(fs::file_time_type::clock::now()) {
+OutputFolder::OutputFolder(const std::string& requested, const std::string& name) {
   const fs::path folder = requested.empty() ? fs::path("renders") / name : fs::path(requested);
   path_ = folder.string();
   std::error_code ec;
@@ -156,44 +165,80 @@ OutputFolder::OutputFolder(const std::string& requested, const std::string& name
     // the lock holds without the note of its owner
   }
   RegisterPartialFile(lock_path_);  // the Ctrl-C watchdog removes it too
-  const fs::path probe = folder / ".aerobox-write-test";
-  WriteFileAtomically(probe.string(), "");
-  fs::remove(probe, ec);
+  // with the lock held, any other staging folder is a dead run's
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder, ec)) {
+    if (entry.path().filename().string().rfind(kStagingPrefix, 0) == 0) {
+      fs::remove_all(entry.path(), ec);
+    }
+  }
+  staging_ = (folder / (kStagingPrefix + std::to_string(getpid()))).string();
+  RegisterPartialFile(staging_);
+  if (!fs::create_directory(staging_, ec) || ec) {
+    UnregisterPartialFile(staging_);
+    UnregisterPartialFile(lock_path_);
+    std::remove(lock_path_.c_str());
+    close(lock_fd_);
+    throw InputError({path_, 0}, "--out", "cannot write in the output folder: " + ec.message());
+  }
+  // a folder this run made holds nothing but this run's: an abrupt end removes it whole
+  if (created_) RegisterPartialFile(path_);
 }
 
 OutputFolder::~OutputFolder() {
+  std::error_code ec;
+  if (!staging_.empty()) {
+    fs::remove_all(staging_, ec);  // a run that did not commit leaves the folder as it was
+    UnregisterPartialFile(staging_);
+  }
   if (lock_fd_ < 0) return;
   UnregisterPartialFile(lock_path_);
   std::remove(lock_path_.c_str());
   close(lock_fd_);  // releases the lock
   // bad input leaves nothing behind: not even the folder this run made, when it stayed empty
-  std::error_code ec;
+  if (created_) UnregisterPartialFile(path_);
   if (created_ && fs::is_empty(path_, ec)) fs::remove(path_, ec);
 }
 
-void OutputFolder::RemoveOutputs(bool stale) const {
-  // the files aerobox writes; one not written by this run is an earlier run's
-  static const char* const kOutputs[] = {"path.csv",     "trajectory.csv", "telemetry.csv",
-                                         "summary.json", "overview.png",   "video.mp4"};
-  std::error_code ec;
-  const auto chosen = [&](const fs::path& file) {
-    const fs::file_time_type written = fs::last_write_time(file, ec);
-    return !ec && (written < run_start_) == stale;
-  };
-  for (const char* name : kOutputs) {
-    const fs::path file = fs::path(path_) / name;
-    if (fs::exists(file, ec) && chosen(file)) fs::remove(file, ec);
+InputError OutputFolder::Published(const InputError& error) const {
+  std::string file = error.where().file;
+  if (file.rfind(staging_ + "/", 0) == 0) {
+    file = (fs::path(path_) / file.substr(staging_.size() + 1)).string();
   }
-  const fs::path frames = fs::path(path_) / "frames";
-  if (!fs::is_directory(frames, ec)) return;
-  for (const fs::directory_entry& entry : fs::directory_iterator(frames, ec)) {
-    if (entry.path().extension() == ".png" && chosen(entry.path())) fs::remove(entry.path(), ec);
-  }
-  if (fs::is_empty(frames, ec)) fs::remove(frames, ec);
+  return InputError({file, error.where().line}, error.field(), error.problem());
 }
 
-void OutputFolder::RemoveStale() const { RemoveOutputs(true); }
-
-void OutputFolder::RemoveWritten() const { RemoveOutputs(false); }
+void OutputFolder::Commit() {
+  if (committed_) throw std::logic_error("OutputFolder: committed twice");
+  const fs::path folder(path_);
+  std::error_code ec;
+  std::set<std::string> written;
+  for (const fs::directory_entry& entry : fs::directory_iterator(staging_, ec)) {
+    written.insert(entry.path().filename().string());
+  }
+  // the earlier run's outputs: its manifest, and the names aerobox wrote before manifests
+  std::set<std::string> earlier(std::begin(kLegacyOutputs), std::end(kLegacyOutputs));
+  {
+    std::ifstream manifest(folder / kManifest);
+    std::string name;
+    while (std::getline(manifest, name)) {
+      if (!name.empty() && name.find('/') == std::string::npos && name[0] != '.') {
+        earlier.insert(name);
+      }
+    }
+  }
+  for (const std::string& name : earlier) {
+    if (written.count(name) == 0) fs::remove_all(folder / name, ec);
+  }
+  std::string manifest;
+  for (const std::string& name : written) {
+    const fs::path target = folder / name;
+    if (fs::is_directory(target, ec)) fs::remove_all(target, ec);  // frames/ as a whole
+    fs::rename(fs::path(staging_) / name, target, ec);
+    if (ec) throw InputError({target.string(), 0}, "", "cannot move into place: " + ec.message());
+    manifest += name + "\n";
+  }
+  WriteFileAtomically((folder / kManifest).string(), manifest);
+  committed_ = true;
+}
 
 }  // namespace aerobox

@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <string>
 
+#include "common/error.h"
+
 namespace aerobox {
 
 // Writes `text` to a temporary file beside `path`, then renames it over `path`, so that `path`
@@ -37,8 +39,14 @@ std::string PartialSuffix();
 
 // A run's output folder: `requested`, or renders/<name>/ when it is empty; created, locked
 // against other aerobox runs (a second run into it stops with exit 2, naming the holder), and
-// proven writable before any work starts. Throws InputError. Released when destroyed, and
-// removed when this run made it and left it empty.
+// proven writable before any work starts. Throws InputError.
+//
+// The folder holds one whole run, never a mix: a run writes into staging(), a hidden folder
+// inside, and Commit() swaps its files in when the run has ended (removing the earlier run's
+// outputs, named in the folder's manifest, .aerobox-files). Destroyed without Commit() (bad
+// input, a failure, Ctrl-C), it removes the staging folder: the earlier run stays untouched.
+// The lock is released when destroyed, and the folder removed when this run made it and left
+// it empty.
 class OutputFolder {
  public:
   OutputFolder(const std::string& requested, const std::string& name);
@@ -46,23 +54,31 @@ class OutputFolder {
   OutputFolder(const OutputFolder&) = delete;
   OutputFolder& operator=(const OutputFolder&) = delete;
 
+  // The folder, as users name it (for messages).
   const std::string& path() const { return path_; }
-
-  // After a run: removes the outputs aerobox writes (path.csv ... video.mp4, frames/) that this
-  // run did not write, so that the folder holds exactly this run's outputs.
-  void RemoveStale() const;
-  // After a run that failed with an exception: removes the outputs this run wrote, so that the
-  // folder holds what it held before.
-  void RemoveWritten() const;
+  // Where this run writes its files until Commit().
+  const std::string& staging() const { return staging_; }
+  // Moves this run's files into the folder in place of the earlier run's. Throws InputError.
+  void Commit();
+  // Runs `work`, which writes into staging(): an InputError naming a file there is thrown again
+  // naming it where the user will look for it, in path().
+  template <typename Work>
+  auto Run(Work&& work) const -> decltype(work()) {
+    try {
+      return work();
+    } catch (const InputError& error) {
+      throw Published(error);
+    }
+  }
+  InputError Published(const InputError& error) const;
 
  private:
-  void RemoveOutputs(bool stale) const;
-
   std::string path_;
+  std::string staging_;
   std::string lock_path_;
   int lock_fd_ = -1;
   bool created_ = false;
-  std::filesystem::file_time_type run_start_;
+  bool committed_ = false;
 };
 
 }  // namespace aerobox

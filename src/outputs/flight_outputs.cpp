@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/stop.h"
 #include "mission/telemetry_table.h"
 #include "outputs/files.h"
 #include "render/png.h"
@@ -30,14 +31,6 @@ std::string Hud(double t, const State& state, double floor, const char* status,
 }
 
 }  // namespace
-
-void StopOnRequest::OnPlan(const PlanOutcome&) {
-  if (*stop_) throw Interrupted();
-}
-
-void StopOnRequest::OnSample(const TelemetrySample&) {
-  if (*stop_) throw Interrupted();
-}
 
 CsvOutputs::CsvOutputs(std::string folder, int every, const TelemetryExtras& extras, bool telemetry)
     : folder_(std::move(folder)),
@@ -158,6 +151,7 @@ void RenderOutputs::OnPlan(const PlanOutcome& plan) {
 
 void RenderOutputs::Frame(const std::string& text, const CameraSpec& camera,
                           const Overlay& overlay) {
+  ThrowIfStopRequested("rendering the video");
   Overlay shown = overlay;
   shown.text = text;
   renderer_->Render(camera, shown, &image_);
@@ -242,6 +236,16 @@ void RenderOutputs::OnFlightEnd(const Simulation& sim, const FlightResult& resul
   Frame(Hud(result.time, sim.VehicleState(), setup_.map.bounds.min.z(), ToString(result.status)),
         {CameraKind::kOverview, ""}, overview);
   WriteFileAtomically((fs::path(folder_) / "overview.png").string(), EncodePng(image_));
+}
+
+void PhaseLines::OnPlan(const PlanOutcome& plan) {
+  if (plan.trajectory) duration_ = plan.trajectory->stats.duration;
+}
+
+void PhaseLines::OnFlightStart(const Simulation&, const Controller&) {
+  err_ << name_ << ": flying, " << std::fixed << std::setprecision(2) << duration_
+       << " s of trajectory\n"
+       << std::defaultfloat << std::flush;
 }
 
 ProgressLine::~ProgressLine() {

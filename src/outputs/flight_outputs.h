@@ -1,11 +1,9 @@
 // The observers of `aerobox fly` (mission/mission.h): each writes or shows one kind of output.
 #pragma once
 
-#include <atomic>
 #include <chrono>
 #include <memory>
 #include <ostream>
-#include <stdexcept>
 #include <string>
 
 #include "mission/mission.h"
@@ -17,22 +15,6 @@
 namespace aerobox {
 
 class StreamingFile;
-
-// Thrown from an observer when Ctrl-C asked the run to stop.
-struct Interrupted : std::runtime_error {
-  Interrupted() : std::runtime_error("interrupted") {}
-};
-
-// Stops the run at the next control step once `*stop` is set (by the SIGINT handler).
-class StopOnRequest : public MissionObserver {
- public:
-  explicit StopOnRequest(const std::atomic<bool>* stop) : stop_(stop) {}
-  void OnPlan(const PlanOutcome&) override;
-  void OnSample(const TelemetrySample&) override;
-
- private:
-  const std::atomic<bool>* stop_;
-};
 
 // path.csv and trajectory.csv once planned; telemetry.csv streamed during the flight (in blocks
 // of rows, under a temporary name, renamed when the flight is over).
@@ -108,6 +90,20 @@ class RenderOutputs : public MissionObserver {
   Simulation* sim_ = nullptr;
   std::vector<int> unknown_geoms_;  // the scene's geom of each unknown box (-1: not in it)
   size_t replans_drawn_ = 0;
+};
+
+// A line on the error stream as the flight begins ("fly window: flying, 7.40 s of trajectory"),
+// after the command's own "planning" line: a log, or a script, sees where the run is.
+class PhaseLines : public MissionObserver {
+ public:
+  PhaseLines(std::string name, std::ostream& err) : name_(std::move(name)), err_(err) {}
+  void OnPlan(const PlanOutcome& plan) override;
+  void OnFlightStart(const Simulation&, const Controller&) override;
+
+ private:
+  std::string name_;
+  std::ostream& err_;
+  double duration_ = 0.0;  // [s] of trajectory
 };
 
 // A progress line on a terminal: frames, frames per second, flight time and time left.

@@ -1,27 +1,21 @@
-// Ctrl-C. The flight stops at its next control step (a cooperative check, StopRequested());
-// everything else (planning, Ipopt, a benchmark, a comparison) is stopped by a watchdog one
-// second after the signal: it removes the temporary files of the outputs being written
-// (PartialFiles) and ends the process with exit code 130. Either way only complete files are
-// left.
+// Ctrl-C. The handler sets the one stop flag (common/stop.h); every long loop checks it and the
+// command leaves by itself within milliseconds, exit code 130, its temporary files removed by
+// the destructors that own them. A watchdog is the last resort: if the process is still
+// running kGrace after the signal, some work did not check the flag (a bug to report); it says
+// so, removes the temporary files and folders being written (common/stop.h) and ends the
+// process with exit code 130. Either way only complete files are left.
 #pragma once
 
-#include <atomic>
-#include <string>
+#include <chrono>
+
+#include "common/stop.h"
 
 namespace aerobox {
 
-// What the watchdog ends the process with: the shell's code for an end by SIGINT (128 + 2).
-inline constexpr int kInterruptedExitCode = 130;
+// How long the watchdog lets the cooperative stop take before it ends the process.
+inline constexpr std::chrono::milliseconds kInterruptGrace{2000};
 
 // Installs the SIGINT handler and the watchdog thread (once; later calls do nothing).
 void InstallInterruptHandler();
-
-// Set once Ctrl-C was pressed.
-const std::atomic<bool>& StopRequested();
-
-// The temporary files being written now; the watchdog removes them before it ends the process.
-// Thread-safe.
-void RegisterPartialFile(const std::string& path);
-void UnregisterPartialFile(const std::string& path);
 
 }  // namespace aerobox

@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "common/number_format.h"
+#include "common/stop.h"
 #include "planning/path_simplify.h"
 
 namespace aerobox {
@@ -70,6 +71,7 @@ LatticePlanner::LatticePlanner(const Aabb& bounds, const Validity& validity,
   free_.assign(cells, 0);
   links_.assign(cells, 0);
   for (size_t c = 0; c < cells; ++c) {
+    ThrowIfStopRequested("building the planning lattice");
     free_[c] = validity_.state(Point(static_cast<int>(c)));
     stats_.nodes += free_[c];
   }
@@ -79,6 +81,7 @@ LatticePlanner::LatticePlanner(const Aabb& bounds, const Validity& validity,
       for (int i = 0; i < nx_; ++i) {
         const int c = Index(i, j, k);
         if (!free_[c]) continue;
+        ThrowIfStopRequested("building the planning lattice");
         for (int d = 13; d < 26; ++d) {  // the "forward" half: higher indices
           const int a = i + kOffsets.d[d][0], b = j + kOffsets.d[d][1], e = k + kOffsets.d[d][2];
           if (a < 0 || b < 0 || e < 0 || a >= nx_ || b >= ny_ || e >= nz_) continue;
@@ -201,6 +204,7 @@ PlanResult LatticePlanner::Plan(const Vec3& start, const Vec3& goal) const {
       if (estimate >= best) break;  // nothing left can do better (the heuristic is admissible)
       if (estimate > cost[c] + (Point(c) - goal).norm() + 1e-9) continue;  // stale entry
       ++result.stats.iterations;
+      ThrowIfStopRequested("planning the path (a lattice search)");
       if (exit_cost[c] >= 0 && cost[c] + exit_cost[c] < best) {
         best = cost[c] + exit_cost[c];
         reached = c;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "common/number_format.h"
+#include "common/stop.h"
 #include "planning/informed_sampler.h"
 #include "planning/nearest_neighbours.h"
 #include "planning/path_simplify.h"
@@ -109,6 +110,9 @@ class Planner {
     long& iterations = result.stats.iterations;
     long searched = 0;  // iterations before the first solution
     const auto more = [&] {
+      ThrowIfStopRequested([&] {
+        return "planning the path (RRT*, " + std::to_string(iterations) + " iterations)";
+      });
       if (elapsed() >= params_.time_budget) return false;
       if (best_parent_ < 0) {
         return params_.max_search_iterations == 0 || searched < params_.max_search_iterations;

@@ -17,7 +17,8 @@ using python::CommandChoice;
 
 void StartInterpreter() {
   // never finalised: the registries keep Python objects until the process ends
-  if (!Py_IsInitialized()) py::initialize_interpreter();
+  // without Python's signal handlers: Ctrl-C stays aerobox's (outputs/interrupt.h)
+  if (!Py_IsInitialized()) py::initialize_interpreter(/*init_signal_handlers=*/false);
 }
 
 SourceLocation Where(const std::string& spec) { return {spec.substr(0, spec.rfind(':')), 0}; }

@@ -420,8 +420,9 @@ std::string WriteOutputs(const FlightRecord& record, const std::string& out_dir,
                          int width, int height, int fps, const std::string& camera, bool report) {
   return Checked([&] {
     const FlightSetup& setup = *record.setup;
-    const OutputFolder folder(out_dir, setup.name);
-    try {
+    OutputFolder output(out_dir, setup.name);
+    const std::string& folder = output.staging();
+    output.Run([&] {
       RenderOptions render;
       render.width = width;
       render.height = height;
@@ -450,11 +451,11 @@ std::string WriteOutputs(const FlightRecord& record, const std::string& out_dir,
         MeasureTrajectory(TrajectoryParams(), &trajectory);
         plan.trajectory = trajectory;
       }
-      CsvOutputs csv(folder.path(), 1, TelemetryExtrasFor(setup));
-      RenderOutputs pictures(folder.path(), setup, render, std::cerr);
+      CsvOutputs csv(folder, 1, TelemetryExtrasFor(setup));
+      RenderOutputs pictures(folder, setup, render, std::cerr);
       Simulation sim = Simulation::FromXml(SceneMjcfFor(setup), setup.name);
       pictures.OnScene(sim, {});
-      ReportOutputs page(folder.path(), setup);
+      ReportOutputs page(folder, setup);
       std::vector<MissionObserver*> observers = {&csv, &pictures};
       if (report) observers.push_back(&page);
       for (MissionObserver* o : observers) o->OnPlan(plan);
@@ -474,19 +475,16 @@ std::string WriteOutputs(const FlightRecord& record, const std::string& out_dir,
                            ? MissionStatus::kReachedGoal
                            : MissionStatus::kFlightFailed;
       const JsonObject summary = RunSummary(setup, mission, {1, pictures.video_frames(), fps});
-      WriteFileAtomically((std::filesystem::path(folder.path()) / "summary.json").string(),
+      WriteFileAtomically((std::filesystem::path(folder) / "summary.json").string(),
                           summary.Text());
       if (report) {
         page.Write(summary.Text(), "# written by the aerobox Python package: Simulator(\"" +
                                        setup.map.source + "\").run(...), seed " +
                                        std::to_string(setup.seed));
       }
-    } catch (...) {
-      folder.RemoveWritten();
-      throw;
-    }
-    folder.RemoveStale();
-    return folder.path();
+    });
+    output.Commit();  // the folder holds this run, or (after an error) the one it held
+    return output.path();
   });
 }
 

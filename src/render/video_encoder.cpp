@@ -16,6 +16,8 @@ extern "C" {
 #include <stdexcept>
 #include <thread>
 
+#include "common/stop.h"
+
 namespace aerobox {
 
 struct VideoEncoder::Impl {
@@ -55,6 +57,7 @@ struct VideoEncoder::Impl {
   void Encode(AVFrame* input) {
     Check(avcodec_send_frame(codec, input), "encoding a frame");
     while (true) {
+      if (input == nullptr) ThrowIfStopRequested("encoding the video (its last frames)");
       const int code = avcodec_receive_packet(codec, packet);
       if (code == AVERROR(EAGAIN) || code == AVERROR_EOF) return;
       Check(code, "receiving a packet");
@@ -81,6 +84,14 @@ struct VideoEncoder::Impl {
         std::unique_lock<std::mutex> lock(mutex);
         changed.wait(lock, [this] { return !queue.empty() || closing; });
         if (queue.empty()) return;
+        if (StopRequested()) {
+          // Ctrl-C: the frames still queued are dropped; AddFrame() and Finish() throw
+          // Interrupted
+          closing = true;
+          lock.unlock();
+          changed.notify_all();
+          return;
+        }
         image = std::move(queue.front());
         queue.pop_front();
       }
@@ -203,8 +214,10 @@ void VideoEncoder::AddFrame(Image frame) {
     throw std::runtime_error("video: frame size differs from the video's");
   }
   std::unique_lock<std::mutex> lock(v.mutex);
-  v.changed.wait(lock, [&v] { return v.queue.size() < v.capacity || !v.error.empty(); });
+  v.changed.wait(lock,
+                 [&v] { return v.queue.size() < v.capacity || !v.error.empty() || v.closing; });
   if (!v.error.empty()) throw std::runtime_error(v.error);
+  if (v.closing) ThrowIfStopRequested("encoding the video");
   v.queue.push_back(std::move(frame));
   lock.unlock();
   v.changed.notify_all();
@@ -214,6 +227,7 @@ void VideoEncoder::Finish() {
   Impl& v = *impl_;
   v.StopWorker();  // drains the queue first: the worker leaves only when it is empty
   if (!v.error.empty()) throw std::runtime_error(v.error);
+  ThrowIfStopRequested("encoding the video");
   v.Encode(nullptr);  // flush
   v.Check(av_write_trailer(v.format), "writing the trailer");
   v.Release();

@@ -4,12 +4,12 @@
 #include <Eigen/SparseLU>
 #include <IpIpoptApplication.hpp>
 #include <IpSolveStatistics.hpp>
-#include <IpTNLP.hpp>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "trajectory/ipopt_status.h"
+#include "trajectory/stoppable_tnlp.h"
 
 namespace aerobox {
 namespace {
@@ -210,7 +210,7 @@ struct ActiveRow {
 
 // Ipopt's view: all three axes in one problem (block-diagonal), variables axis after axis; the
 // equalities of every axis, then the selected corridor rows.
-class MinSnapNlp : public Ipopt::TNLP {
+class MinSnapNlp : public StoppableTnlp {
  public:
   MinSnapNlp(const AxisQp& qp, const Eigen::MatrixXd& start, std::vector<ActiveRow> active)
       : qp_(qp), start_(start), active_(std::move(active)) {
@@ -402,6 +402,8 @@ const char* ToString(SolveStatus status) {
 }
 
 PiecewiseTrajectory SolveMinSnapClosedForm(const MinSnapProblem& problem) {
+  // the time searches call this hundreds of times: each call is a point to stop at
+  ThrowIfStopRequested("solving the trajectory (minimum snap, closed form)");
   problem.Validate();
   const AxisQp qp = BuildQp(problem);
   return ToTrajectory(problem, qp, SolveKkt(qp));
@@ -480,6 +482,7 @@ MinSnapSolution SolveMinSnapIpopt(const MinSnapProblem& problem, const IpoptSett
     if (fail) x.setZero();
     Ipopt::SmartPtr<MinSnapNlp> nlp = new MinSnapNlp(qp, x, active);
     const Ipopt::ApplicationReturnStatus status = app->OptimizeTNLP(nlp);
+    ThrowIfStoppedOnRequest(status, "solving the trajectory (Ipopt, minimum snap)");
     result.message = DescribeIpoptStatus(status);
     if (Ipopt::SmartPtr<Ipopt::SolveStatistics> stats = app->Statistics(); IsValid(stats)) {
       result.solver_iterations += stats->IterationCount();

@@ -1,12 +1,12 @@
 #include "trajectory/point_mass.h"
 
 #include <IpIpoptApplication.hpp>
-#include <IpTNLP.hpp>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "trajectory/ipopt_status.h"
+#include "trajectory/stoppable_tnlp.h"
 #include "trajectory/time_allocation.h"
 
 namespace aerobox {
@@ -20,7 +20,7 @@ constexpr int kAxes = 3;
 // interval, the exact integration of its constant acceleration (3 rows for the position, 3 for
 // the velocity); per interval |a|^2 <= A^2; per node |v|^2 <= V^2 (the velocity is linear over
 // an interval, so the ball holds in between too).
-class PointMassNlp : public Ipopt::TNLP {
+class PointMassNlp : public StoppableTnlp {
  public:
   PointMassNlp(const std::vector<Vec3>& waypoints, const PointMassParams& params)
       : waypoints_(waypoints),
@@ -278,6 +278,7 @@ PointMassResult MinimumTimePointMass(const std::vector<Vec3>& waypoints,
   }
   Ipopt::SmartPtr<PointMassNlp> nlp = new PointMassNlp(waypoints, params);
   const Ipopt::ApplicationReturnStatus status = app->OptimizeTNLP(nlp);
+  ThrowIfStoppedOnRequest(status, "allocating segment times (Ipopt, point mass)");
   result.message = DescribeIpoptStatus(status);
   result.solved = status == Ipopt::Solve_Succeeded || status == Ipopt::Solved_To_Acceptable_Level;
   if (!result.solved) return result;

@@ -1,5 +1,9 @@
 #include <doctest/doctest.h>
 
+#include <chrono>
+#include <thread>
+
+#include "common/stop.h"
 #include "planning/path_simplify.h"
 #include "planning/planning_test_util.h"
 #include "planning/rrt_star.h"
@@ -124,6 +128,32 @@ TEST_CASE("no path: a wall closes the map, the planner says so within its budget
   CHECK(result.path.empty());
   CHECK(result.stats.iterations > 100);
   CHECK(result.stats.planning_time < 1.0);  // stopped near its 0.2 s budget
+}
+
+TEST_CASE("a stop request (Ctrl-C) ends a minute-long search within milliseconds") {
+  const Map map = ClosedRoom();
+  const CollisionWorld world(map, CollisionParams());
+  RrtStarParams params;
+  params.time_budget = 60;
+  params.max_search_iterations = 0;  // no limit: only the stop request ends it
+  std::thread stopper([] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    RequestStop();
+  });
+  const auto begin = std::chrono::steady_clock::now();
+  std::string during;
+  try {
+    PlanRrtStar(Vec3(1, 1, 0.5), Vec3(1, 3, 0.5), world.free_bounds(), testing::ValidityOf(world),
+                params);
+  } catch (const Interrupted& stop) {
+    during = stop.during();
+  }
+  const double took =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  stopper.join();
+  ClearStopRequest();
+  CHECK(during.find("planning the path (RRT*") == 0);
+  CHECK(took < 5.0);  // the budget was 60 s: only the request can have ended it
 }
 
 TEST_CASE("invalid start or goal are statuses, not exceptions") {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "common/stop.h"
 #include "trajectory/min_snap.h"
 #include "trajectory/time_allocation.h"
 
@@ -101,6 +102,24 @@ TEST_CASE("Ipopt without active inequalities equals the closed form to 1e-6") {
         solved.trajectory.segments()[i].coefficients() - closed.segments()[i].coefficients();
     CHECK(difference.cwiseAbs().maxCoeff() < 1e-6);
   }
+}
+
+TEST_CASE("a stop request (Ctrl-C) ends Ipopt at its next iteration, as Interrupted") {
+  const MinSnapProblem problem = ZigZag(5);
+  RequestStop();
+  std::string during;
+  try {
+    SolveMinSnapIpopt(problem);
+  } catch (const Interrupted& stop) {
+    during = stop.during();
+  }
+  ClearStopRequest();
+  CHECK(during == "solving the trajectory (Ipopt, minimum snap)");
+  // and the closed form, which the time searches call hundreds of times
+  RequestStop();
+  CHECK_THROWS_AS(SolveMinSnapClosedForm(problem), Interrupted);
+  ClearStopRequest();
+  CHECK(SolveMinSnapIpopt(problem).status == SolveStatus::kSolved);  // nothing left over
 }
 
 TEST_CASE("Ipopt with corridors: samples stay inside, the cost rises, infeasible is reported") {
