@@ -40,10 +40,11 @@ stop_pid_file() {  # stop_pid_file FILE NAME: SIGTERM, then SIGKILL after 10 s
   local file=$1 name=$2 pid
   [ -f "$file" ] || return 0
   pid=$(cat "$file" 2>/dev/null || true)
-  if [ -n "$pid" ] && kill -0 "$pid" 2>/dev/null; then
+  if alive "$file"; then
     kill "$pid" 2>/dev/null || true
-    for _ in $(seq 100); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
-    if kill -0 "$pid" 2>/dev/null; then
+    # a daemon that exited stays a zombie until init reaps it (a second or two here): it stopped
+    for _ in $(seq 100); do alive "$file" || break; sleep 0.1; done
+    if alive "$file"; then
       echo "slurm_local: $name ($pid) did not stop: killing it" >&2
       kill -9 "$pid" 2>/dev/null || true
     fi
