@@ -1,9 +1,10 @@
 """Rotor order: every built-in vehicle numbers its rotors as RotorPy does, so a motor-level
 controller written for RotorPy flies each of them; a user's own quad_params keep the order they
-were given in."""
+were given in; the README's figure of the numbering is what the package exports."""
 
 import math
 import os
+import re
 import tempfile
 import unittest
 
@@ -219,6 +220,45 @@ class UserRotorOrder(unittest.TestCase):
             self.assertIn(result["status"], ("collision", "fly-away"))
             self.assertLess(result["flight_time"], HOLD_TIME)
             self.assertGreater(deviation, 0.1)
+
+
+class ReadmeFigure(unittest.TestCase):
+    """The README's top view of the rotor numbering (The vehicle) is what the package exports:
+    each label r1..r4 sits on the side of the figure's centre its rotor_pos has (nose up, y to
+    the left) and says the spin its rotor_directions gives (CW: +1)."""
+
+    LABEL = re.compile(r"\br([1-4]) (CCW|CW)\b")
+
+    def figure(self):
+        with open(os.path.join(SOURCE, "README.md"), encoding="utf-8") as file:
+            text = file.read()
+        section = text[text.index("\n## The vehicle\n"):]
+        blocks = re.findall(r"```text\n(.*?)```", section, re.S)
+        figures = [block for block in blocks if self.LABEL.search(block)]
+        self.assertTrue(figures, "README.md, The vehicle: no figure with r1..r4")
+        return figures[0]
+
+    def test_the_figure_matches_quad_params(self):
+        figure = self.figure()
+        self.assertIn("y <", figure)  # the axes as read below: x (the nose) up, y to the left
+        labels = {}
+        for row, line in enumerate(figure.splitlines()):
+            for match in self.LABEL.finditer(line):
+                labels[int(match.group(1))] = (row, match.start(), match.group(2))
+        self.assertEqual(sorted(labels), [1, 2, 3, 4])
+        centre_row = np.mean([row for row, _, _ in labels.values()])
+        centre_column = np.mean([column for _, column, _ in labels.values()])
+        with tempfile.TemporaryDirectory() as folder:
+            for kind in BUILTIN_VEHICLES:
+                params = aerobox.Simulator(empty_map(folder), vehicle=kind).quad_params
+                positions = list(params["rotor_pos"].values())
+                for rotor, (row, column, spin) in labels.items():
+                    with self.subTest(vehicle=kind, rotor=rotor):
+                        x, y = positions[rotor - 1][:2]
+                        self.assertEqual(row < centre_row, x > 0, "front or back")
+                        self.assertEqual(column < centre_column, y > 0, "left or right")
+                        self.assertEqual(params["rotor_directions"][rotor - 1],
+                                         1.0 if spin == "CW" else -1.0)
 
 
 if __name__ == "__main__":
