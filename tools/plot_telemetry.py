@@ -37,7 +37,7 @@ def main(argv):
     axes.flat[4].plot(t, speed, color="tab:green")
     axes.flat[4].set_ylabel("speed [m/s]")
     for i in range(1, 5):
-        axes.flat[5].plot(t, data[f"f{i}"], linewidth=0.8, label=f"rotor {i - 1}")
+        axes.flat[5].plot(t, data[f"f{i}"], linewidth=0.8, label=f"rotor {i}")
     axes.flat[5].set_ylabel("rotor thrust [N]")
     axes.flat[5].legend(loc="best", fontsize=8, ncol=2)
     for axis in axes[-1]:

@@ -329,6 +329,8 @@ QuadParams VehicleFromDict(py::handle value, std::vector<std::string>* ignored,
   if (has("rotor_pos")) {
     used.insert("rotor_pos");
     const py::handle rotor_pos = dict["rotor_pos"];
+    // in the dict's order (RotorPy's Multirotor iterates it so too), never reordered: rotor
+    // i of the commands is the i-th entry the user gave
     std::vector<Vec3> positions;
     if (py::isinstance<py::dict>(rotor_pos)) {
       for (const auto item : py::reinterpret_borrow<py::dict>(rotor_pos)) {

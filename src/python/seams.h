@@ -58,7 +58,9 @@ ControlCommand CommandFromDict(py::handle dict, CommandChoice choice, const Quad
 // the triangle inequality are set on it). Throws py::value_error naming the key.
 QuadParams VehicleFromDict(py::handle dict, std::vector<std::string>* ignored,
                            std::vector<std::string>* adjusted);
-// A vehicle as RotorPy's quad_params dict (rotor_pos as r1..r4, in aerobox's rotor order).
+// A vehicle as RotorPy's quad_params dict: rotor_pos as r1..r4 by the index of
+// QuadParams::rotor_positions_B (RotorPy's order for the built-ins; a dict's own order for a
+// vehicle read with VehicleFromDict, which keeps it as given).
 py::dict VehicleDict(const QuadParams& vehicle);
 
 // The map as flightsim's world dict: bounds.extents [xmin, xmax, ymin, ymax, zmin, zmax],

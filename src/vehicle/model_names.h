@@ -15,7 +15,8 @@ inline constexpr const char* kFloorGeom = "floor";
 inline constexpr const char* kOverviewCamera = "overview";
 inline constexpr const char* kChaseCamera = "chase";
 
-// "rotor_0" .. "rotor_3" (sites) and "thrust_0" .. "thrust_3" (actuators).
+// "rotor_0" .. "rotor_3" (sites) and "thrust_0" .. "thrust_3" (actuators), by the index of
+// QuadParams::rotor_positions_B: rotor_0 is RotorPy's r1 (front-left) for the built-ins.
 inline std::string RotorSite(int rotor) { return "rotor_" + std::to_string(rotor); }
 inline std::string ThrustActuator(int rotor) { return "thrust_" + std::to_string(rotor); }
 

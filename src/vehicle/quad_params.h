@@ -29,14 +29,19 @@ struct QuadParams {
   Vec3 inertia = Vec3(7.1e-5, 7.5e-5, 1.24e-4);
 
   // Rotor centres in the body frame [m]. The Tello's motors are about 7 cm apart front-to-back
-  // and side-to-side (X layout): 0 front-left, 1 back-left, 2 back-right, 3 front-right.
-  std::array<Vec3, kNumRotors> rotor_positions_B = {Vec3(0.035, 0.035, 0), Vec3(-0.035, 0.035, 0),
+  // and side-to-side (X layout). The index is the rotor's number everywhere (commands, motor
+  // lag, the MJCF's rotor_i / thrust_i, telemetry f1..f4): every built-in vehicle numbers its
+  // rotors as RotorPy's vehicles do (crazyflie_params.py's r1..r4), so that a motor-level
+  // controller written for RotorPy flies them: 0 front-left, 1 front-right, 2 back-right,
+  // 3 back-left (clockwise seen from above).
+  std::array<Vec3, kNumRotors> rotor_positions_B = {Vec3(0.035, 0.035, 0), Vec3(0.035, -0.035, 0),
                                                     Vec3(-0.035, -0.035, 0),
-                                                    Vec3(0.035, -0.035, 0)};
+                                                    Vec3(-0.035, 0.035, 0)};
 
   // Sign of each rotor's reaction (yaw) moment on the body about body z, as RotorPy's
   // rotor_directions: +1 for a rotor that spins clockwise seen from above. Diagonal rotors
-  // share a sign, so equal thrusts give no yaw moment.
+  // share a sign, so equal thrusts give no yaw moment. RotorPy's 1, -1, 1, -1: front-left and
+  // back-right clockwise, front-right and back-left counter-clockwise.
   std::array<int, kNumRotors> rotor_directions = {+1, -1, +1, -1};
 
   // Rotor limits [N]: thrust-to-weight about 2 (4 x 0.4 N / (0.08 kg x 9.81)).

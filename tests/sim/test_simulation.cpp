@@ -41,8 +41,8 @@ TEST_CASE("unequal thrusts rotate the body as the allocation matrix predicts") {
   const double hover = params.HoverThrustPerRotor();
   const double delta = 0.02;  // [N] per rotor, well inside [0, max]
   const std::pair<const char*, Vec4> cases[] = {
-      {"roll: left rotors up", Vec4(delta, delta, -delta, -delta)},
-      {"pitch: back rotors up", Vec4(-delta, delta, delta, -delta)},
+      {"roll: left rotors up", Vec4(delta, -delta, -delta, delta)},
+      {"pitch: back rotors up", Vec4(-delta, -delta, delta, delta)},
       {"yaw: clockwise rotors up", Vec4(delta, -delta, delta, -delta)},
       {"mixed", Vec4(delta, 0.5 * delta, -0.3 * delta, 0)},
   };

@@ -11,13 +11,14 @@
 namespace aerobox {
 namespace {
 
-// A Tello-sized X quadrotor: 80 g, rotors 3.5 cm out on each axis, 0.4 N each.
+// A Tello-sized X quadrotor: 80 g, rotors 3.5 cm out on each axis, 0.4 N each, numbered as
+// RotorPy (front-left, then clockwise seen from above).
 FlatnessLimits Tello() {
   FlatnessLimits v;
   v.mass = 0.08;
   v.inertia = Vec3(7.1e-5, 7.5e-5, 1.24e-4);
   const double d = 0.035, k = 0.006;
-  const double x[4] = {d, -d, -d, d}, y[4] = {d, d, -d, -d}, dir[4] = {1, -1, 1, -1};
+  const double x[4] = {d, d, -d, -d}, y[4] = {d, -d, -d, d}, dir[4] = {1, -1, 1, -1};
   for (int i = 0; i < 4; ++i) v.allocation.col(i) << 1.0, y[i], -x[i], dir[i] * k;
   v.min_rotor_thrust = 0.0;
   v.max_rotor_thrust = 0.4;

@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
 #include <stdexcept>
+#include <string>
 
 #include "vehicle/quad_params.h"
 
@@ -22,10 +23,10 @@ TEST_CASE("allocation matrix: equal thrusts lift without moments and signs follo
   CHECK(wrench[0] == doctest::Approx(0.8));
   CHECK(wrench.tail<3>().norm() < 1e-15);  // exact cancellation up to rounding
 
-  // left rotors (0, 1) push +y side up: positive roll about +x
-  CHECK((a * Vec4(1, 1, 0, 0))[1] > 0);
-  // back rotors (1, 2) push the tail up: nose down, positive pitch about +y
-  CHECK((a * Vec4(0, 1, 1, 0))[2] > 0);
+  // left rotors (0, 3) push +y side up: positive roll about +x
+  CHECK((a * Vec4(1, 0, 0, 1))[1] > 0);
+  // back rotors (2, 3) push the tail up: nose down, positive pitch about +y
+  CHECK((a * Vec4(0, 0, 1, 1))[2] > 0);
   // clockwise rotors (0, 2) turn the body counter-clockwise: positive yaw
   CHECK((a * Vec4(1, 0, 1, 0))[3] == doctest::Approx(2 * params.yaw_moment_per_thrust));
   // the mixer needs the inverse: the matrix must be well conditioned
@@ -74,6 +75,25 @@ TEST_CASE("the built-in vehicles: a Tello by default, a Crazyflie from published
   // the nose up (negative pitch about +y in FLU)
   CHECK((a * Vec4(1, 1, 0, 0))[2] < 0);
   CHECK((a * Vec4(1, 0, 0, 1))[1] > 0);  // the left rotors (0 and 3) roll right side down
+}
+
+TEST_CASE("every built-in vehicle numbers its rotors as RotorPy: front-left, then clockwise") {
+  // RotorPy's crazyflie_params: r1 (+x, +y), r2 (+x, -y), r3 (-x, -y), r4 (-x, +y) in FLU,
+  // rotor_directions 1, -1, 1, -1; a motor-level controller written for it relies on both
+  const double x_sign[kNumRotors] = {+1, +1, -1, -1};
+  const double y_sign[kNumRotors] = {+1, -1, -1, +1};
+  const int directions[kNumRotors] = {+1, -1, +1, -1};
+  for (const std::string& kind : BuiltinVehicleNames()) {
+    CAPTURE(kind);
+    const QuadParams params = *BuiltinVehicle(kind);
+    for (int i = 0; i < kNumRotors; ++i) {
+      CAPTURE(i);
+      const Vec3 r = RotorPosition_B(params, i);
+      CHECK(r.x() * x_sign[i] > 0);
+      CHECK(r.y() * y_sign[i] > 0);
+      CHECK(params.rotor_directions[i] == directions[i]);
+    }
+  }
 }
 
 TEST_CASE("rotor layouts that cannot control every axis are refused") {

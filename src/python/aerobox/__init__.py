@@ -247,7 +247,8 @@ class Simulator:
     vehicle: "tello" (80 g, the default), "crazyflie" (RotorPy's and Foerster's Crazyflie 2.0),
         or a quad_params dict as RotorPy ships it (or flightsim's). From the dict aerobox takes
         mass [kg], Ixx, Iyy, Izz [kg m^2], num_rotors (must be 4), rotor_pos (dict r1..r4 or an
-        (4, 3) array) [m, body frame], rotor_directions (+1: positive yaw reaction), k_eta
+        (4, 3) array, rotors in the order given) [m, body frame], rotor_directions (+1:
+        positive yaw reaction, as RotorPy's: a rotor spinning clockwise seen from above), k_eta
         [N/(rad/s)^2], k_m [N m/(rad/s)^2], rotor_speed_min, rotor_speed_max [rad/s] (thrust
         limits k_eta w^2), tau_m [s] (one motor lag for all rotors: their mean) and rotor_radius
         [m] (the collision box covers the rotor discs, 3 cm high); flightsim's arm_length,
@@ -265,8 +266,11 @@ class Simulator:
         either): the scenario's [wind], [aero] and [sensors] (README: Wind, drag and
         sensors). They act in run(); step() is the still, ideal world.
 
-    Attributes: quad_params (the vehicle as RotorPy's dict, rotor order as the commands use
-    it), timestep [s], time [s], state (RotorPy's state dict), map (aerobox.Map).
+    Attributes: quad_params (the vehicle as RotorPy's dict; its rotor_pos r1..r4 and
+    rotor_directions are in the order cmd_motor_thrusts and cmd_motor_speeds command the rotors:
+    RotorPy's for "tello" and "crazyflie", r1 front-left, then clockwise seen from above; a
+    dict's own as it was given), timestep [s], time [s], state (RotorPy's state dict), map
+    (aerobox.Map).
     """
 
     def __init__(self, map, vehicle="tello", start=None, seed=1, **scenario_keys):
