@@ -2,10 +2,13 @@
 
 #include "app/cli.h"
 #include "outputs/interrupt.h"
+#include "render/offscreen_context.h"
 
 int main(int argc, char** argv) {
-  // Ctrl-C: the flight stops at its next control step, anything else within a second; only
-  // complete files are left (outputs/interrupt.h)
+  // first, before any thread: Mesa's disk-cache thread would hold up an interrupted end
+  aerobox::DisableShaderDiskCache();
+  // Ctrl-C: every long loop stops at its next check, exit 130, no output written or changed
+  // (outputs/interrupt.h)
   aerobox::InstallInterruptHandler();
   return aerobox::RunCli(argc, argv, std::cout, std::cerr);
 }

@@ -25,6 +25,7 @@
 #include "mission/plan.h"
 #include "outputs/interrupt.h"
 #include "planning/path_simplify.h"
+#include "render/offscreen_context.h"
 #include "scenario/scenario.h"
 #include "trajectory/point_mass.h"
 #include "trajectory/time_allocation.h"
@@ -217,6 +218,7 @@ int main(int argc, char** argv) {
     return app.exit(error) == 0 ? 0 : 2;
   }
   // Ctrl-C: every section stops at its next check, exit 130 (outputs/interrupt.h)
+  aerobox::DisableShaderDiskCache();  // its thread would hold up an interrupted process's end
   aerobox::InstallInterruptHandler();
   try {
     if (!robustness_csv.empty()) {

@@ -38,6 +38,9 @@ std::vector<Vec3> Route(const FlightSetup& setup, const PiecewiseTrajectory& tra
   return route;
 }
 
+// How often waiting for the scene thread looks for a stop request.
+constexpr std::chrono::milliseconds kSceneWaitPoll{10};
+
 }  // namespace
 
 MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
@@ -75,6 +78,11 @@ MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
   } catch (...) {
     if (scene.valid()) scene.wait();
     throw;
+  }
+  // the scene may still be loading (and its renderer compiling its shaders): a Ctrl-C meanwhile
+  // ends the process at once, as above
+  while (scene.valid() && scene.wait_for(kSceneWaitPoll) != std::future_status::ready) {
+    if (StopRequested()) ExitInterrupted("loading the scene");
   }
   if (scene.valid()) scene.get();  // rethrows what loading the scene threw
   const PlanOutcome& plan = result.plan;

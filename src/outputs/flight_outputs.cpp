@@ -90,6 +90,10 @@ void RenderOutputs::OnScene(Simulation& sim, const std::vector<bool>& kept) {
   } catch (const std::invalid_argument& e) {
     throw InputError({"command line", 0}, "--size", e.what());
   }
+  // the first frames cost 0.45-0.6 s (llvmpipe compiles its shaders), the next ones 10 ms:
+  // compiled here, while the planner works, they delay neither the flight's first step nor a
+  // Ctrl-C there
+  renderer_->CompileShaders();
   renderer_->ReleaseFromThread();  // the flight renders from the main thread
   // boxes the planner does not know: faint until the vehicle's sensor reveals them
   sim_ = &sim;

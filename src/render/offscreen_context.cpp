@@ -2,11 +2,14 @@
 
 #include <GL/osmesa.h>
 
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace aerobox {
+
+void DisableShaderDiskCache() { setenv("MESA_SHADER_CACHE_DISABLE", "true", /*overwrite=*/0); }
 
 struct OffscreenContext::Impl {
   OSMesaContext context = nullptr;

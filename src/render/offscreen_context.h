@@ -6,6 +6,13 @@
 
 namespace aerobox {
 
+// Mesa writes compiled shaders to a disk cache (~/.cache) from a thread of its own, which holds
+// up the end of the process: on a loaded machine, a Ctrl-C while a context was being made
+// took 0.6-0.9 s to end the process, that thread still running. Turns the cache off, unless
+// the user chose otherwise (MESA_SHADER_CACHE_DISABLE set); making a context is as fast without
+// it (mjr_makeContext about 0.3 s either way). Call at start-up, before any thread is started.
+void DisableShaderDiskCache();
+
 class OffscreenContext {
  public:
   // Throws std::runtime_error when OSMesa cannot create or activate a context.

@@ -262,6 +262,27 @@ Renderer::~Renderer() {
   mjv_freeScene(&impl_->scene);
 }
 
+void Renderer::CompileShaders() {
+  const Vec3 p = impl_->sim->VehicleState().p_W;
+  const Vec3 step(0.5, 0.5, 0.5);
+  Overlay every;
+  every.path = every.trajectory = every.trail = {p, p + step};
+  every.speeds = {0.0, 1.0};
+  every.abandoned = {every.path};
+  every.start = p;
+  every.goal = p + step;
+  every.via = {p - step};
+  every.text = "t 0.0 s";
+  every.legend = "legend";
+  every.tree = {{p, p + step}};
+  every.tree_shown = 1;
+  every.top_inset = true;
+  every.wind_W = Vec3(1, 0, 0);
+  every.wind_origin = p;
+  Image scratch;
+  Render({CameraKind::kOverview, ""}, every, &scratch);  // the chase camera keeps its state
+}
+
 void Renderer::ReleaseFromThread() { OffscreenContext::ReleaseCurrent(); }
 
 int Renderer::width() const { return impl_->settings.width; }

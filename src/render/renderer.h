@@ -86,6 +86,12 @@ class Renderer {
   // for a named camera the scene does not have.
   void Render(const CameraSpec& camera, const Overlay& overlay, Image* out);
 
+  // Draws, and throws away, one frame with every kind of overlay, leaving the chase camera's
+  // state as it was: a CPU renderer (llvmpipe) compiles its shaders at the first frame that
+  // needs them (0.45-0.6 s in all), which then happens here, where the caller chooses (the
+  // scene thread, while the planner works), not at the flight's first frame.
+  void CompileShaders();
+
   // Lets another thread render from now on: the constructor leaves the GL context current in
   // the thread that made it, and each Render() makes it current in its own thread.
   void ReleaseFromThread();

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/stop.h"
+
 namespace aerobox {
 namespace {
 
@@ -117,6 +119,8 @@ std::vector<FeasibilityCheck> CheckSegments(const PiecewiseTrajectory& trajector
   std::vector<FeasibilityCheck> checks;
   const std::vector<double> knots = trajectory.KnotTimes();
   for (size_t i = 0; i + 1 < knots.size(); ++i) {
+    // long trajectories: hundreds of segments, each sampled (Ctrl-C stops between them)
+    ThrowIfStopRequested("checking the trajectory's feasibility");
     checks.push_back(CheckFeasibility(trajectory, limits, dt, knots[i], knots[i + 1]));
   }
   return checks;

@@ -64,6 +64,8 @@ snapshot() { (cd "$1" && find . -type f | sort | xargs md5sum); }
 check() {
   local name=$1 phase=$2
   shift 2
+  # an earlier round's files would match at once, before this command has even started
+  rm -f "$work/$name.out" "$work/$name.err"
   "$@" > "$work/$name.out" 2> "$work/$name.err" &
   local pid=$!
   local waited=0
