@@ -7,6 +7,7 @@
 #include <csignal>
 #include <filesystem>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 
 #include "app/compare_job.h"
@@ -427,7 +428,7 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   fly->add_option("--frames-every", fly_options.frames_every,
                   "also write frames/frame_NNNNNN.png every this many seconds of flight");
 
-  double max_speed = 0, max_accel = 0;
+  std::optional<double> max_speed, max_accel;  // unset: the scenario's
   std::string objective;
   for (CLI::App* command : {plan, fly}) {
     command->add_option("--objective", objective,
@@ -579,18 +580,21 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
       setup.planning.trajectory.objective =
           objective == "snap" ? TimeObjective::kSnap : TimeObjective::kMinTime;
     }
-    if (max_speed != 0) {
-      if (!(max_speed >= 0.01 && max_speed <= 8.0)) {
+    if (max_speed) {
+      // up to the vehicle's own top speed (8 m/s for the Tello)
+      if (!(*max_speed >= 0.01 && *max_speed <= setup.vehicle.max_speed)) {
         throw InputError({"command line", 0}, "--max-speed",
-                         "expected 0.01 to 8 m/s (a Tello's top speed)");
+                         "expected 0.01 to " + FormatNumber(setup.vehicle.max_speed) +
+                             " m/s (the vehicle's top speed), got " + FormatNumber(*max_speed));
       }
-      setup.planning.trajectory.max_speed = max_speed;
+      setup.planning.trajectory.max_speed = *max_speed;
     }
-    if (max_accel != 0) {
-      if (!(max_accel >= 0.01 && max_accel <= 10.0)) {
-        throw InputError({"command line", 0}, "--max-accel", "expected 0.01 to 10 m/s^2");
+    if (max_accel) {
+      if (!(*max_accel >= 0.01 && *max_accel <= 10.0)) {
+        throw InputError({"command line", 0}, "--max-accel",
+                         "expected 0.01 to 10 m/s^2, got " + FormatNumber(*max_accel));
       }
-      setup.planning.trajectory.max_accel = max_accel;
+      setup.planning.trajectory.max_accel = *max_accel;
     }
     if (fly->parsed() && fly_options.telemetry_rate != 0) {
       const double every = setup.controller.rate / fly_options.telemetry_rate;

@@ -172,8 +172,9 @@ int FlyInto(const OutputFolder& output, const FlightSetup& setup, const FlyOptio
                 : " (" + trajectory.stats.binding_limit.limit + " at " +
                       FormatNumber(std::round(trajectory.stats.binding_limit.ratio * 100)) +
                       " % of its limit)")
-        << (trajectory.stats.solver_message.find("after Ipopt") != std::string::npos
-                ? " (" + trajectory.stats.solver_message + ")"
+        << (trajectory.stats.closed_form_fallback
+                ? " (" + trajectory.stats.solver_message +
+                      "; the closed form flown instead passed the same checks: nothing to do)"
                 : std::string())
         << "\n"
         << "  flight      " << ToString(flight.status) << " after " << flight.time << " s ("

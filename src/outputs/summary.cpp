@@ -64,7 +64,11 @@ JsonObject RunSummary(const FlightSetup& setup, const MissionResult& result,
         .Add("trajectory_max_accel_mps2", trajectory.stats.max_accel)
         .Add("speed_limit_mps", SpeedLimit(setup))
         .Add("accel_limit_mps2", TrajectoryParamsFor(setup).max_accel)
-        .Add("trajectory_objective", ToString(setup.planning.trajectory.objective));
+        .Add("trajectory_objective", ToString(setup.planning.trajectory.objective))
+        // Ipopt's word, and whether the closed form was flown after Ipopt failed (a sweep counts
+        // these)
+        .Add("trajectory_solver_message", trajectory.stats.solver_message)
+        .Add("trajectory_fallback", trajectory.stats.closed_form_fallback);
     if (setup.planning.trajectory.objective == TimeObjective::kMinTime) {
       // the limit the trajectory meets most closely (1: exactly at it)
       summary.Add("trajectory_binding_limit", trajectory.stats.binding_limit.limit)

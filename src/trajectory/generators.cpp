@@ -26,6 +26,7 @@ TrajectoryResult MinSnapWithFallback(const std::vector<Vec3>& path, const Trajec
   if (fallback.status != TrajectoryStatus::kSolved) return result;
   fallback.stats.solver_message =
       "closed form with refinement, after Ipopt: " + result.stats.solver_message;
+  fallback.stats.closed_form_fallback = true;
   fallback.stats.solve_time += result.stats.solve_time;
   return fallback;
 }

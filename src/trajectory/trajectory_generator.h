@@ -85,6 +85,9 @@ struct TrajectoryStats {
   double max_accel = 0.0;      // [m/s^2], sampled
   double snap_cost = 0.0;      // [m^2/s^7]
   std::string solver_message;  // Ipopt's last return status
+  // Ipopt failed on the corridors and the closed form (refined, checked) is the result
+  // (TrajectoryParams::closed_form_fallback); solver_message then says why Ipopt failed
+  bool closed_form_fallback = false;
   // min-time: the limit the trajectory meets most closely, where and how closely
   FeasibilityCheck binding_limit;
 };

@@ -288,6 +288,16 @@ TEST_CASE("fly: --max-speed, --max-accel, --telemetry-rate, --playback, scenario
         std::string::npos);
   CHECK(Aerobox({"fly", slow, "--no-video", "--quiet", "--out", out, "--max-speed", "20"})
             .err.find("--max-speed: expected 0.01 to 8 m/s") != std::string::npos);
+  // 0 is a value like any other, not "unset": refused as a scenario refuses it
+  const Run zero =
+      Aerobox({"fly", slow, "--no-video", "--quiet", "--out", out, "--max-speed", "0"});
+  CHECK(zero.code == 2);
+  CHECK(zero.err.find("--max-speed: expected 0.01 to 8 m/s") != std::string::npos);
+  CHECK(Aerobox({"plan", slow, "--out", out, "--max-accel", "0"}).code == 2);
+  // a Crazyflie's own top speed bounds it, not the Tello's
+  CHECK(Aerobox({"plan", slow, "--out", out, "--set", "vehicle.kind=\"crazyflie\"", "--max-speed",
+                 "7.5"})
+            .err.find("--max-speed: expected 0.01 to ") != std::string::npos);
 }
 
 TEST_CASE("fly --wind --turbulence: the wind, its drag and their columns") {

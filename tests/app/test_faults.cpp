@@ -81,7 +81,13 @@ TEST_CASE(
   const testing::CliRun fallback = FlyWindow(out.string(), "ipopt");
   CHECK(fallback.code == kExitReachedGoal);
   CHECK(fallback.out.find("(closed form with refinement, after Ipopt: maximum iterations "
-                          "exceeded)") != std::string::npos);
+                          "exceeded; the closed form flown instead passed the same checks") !=
+        std::string::npos);
+  // and summary.json says it, so that a sweep can count it
+  const auto summary = testing::ReadSummary(out / "summary.json");
+  CHECK(summary["trajectory_fallback"] == true);
+  CHECK(summary["trajectory_solver_message"] ==
+        "closed form with refinement, after Ipopt: maximum iterations exceeded");
   const std::string window = (testing::SourceDir() / "scenes" / "window" / "map.json").string();
   const std::string scenario =
       dir.Write("strict.toml", "name = \"window\"\nmap = \"" + window +
