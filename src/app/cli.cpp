@@ -226,8 +226,7 @@ int PlanInto(const FlightSetup& setup, const OutputFolder& output, std::ostream&
         << stats.iterations << " iterations (" << timing.str() << " s), seed " << setup.seed
         << "\n";
     if (plan.result.status == PlanStatus::kPathBlocked) {
-      out << "  the given path leaves free space at point " << stats.blocked_leg
-          << " (0 is the start) or on the leg that ends there\n";
+      out << "  " << DescribeBlockedPath(plan) << "\n";
     }
     return plan.result.status == PlanStatus::kNoPathWithinBudget ||
                    plan.result.status == PlanStatus::kPathBlocked

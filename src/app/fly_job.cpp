@@ -148,6 +148,9 @@ int FlyInto(const OutputFolder& output, const FlightSetup& setup, const FlyOptio
   if (result.status == MissionStatus::kNoPath) {
     out << DescribeMoves(plan.start, plan.goal) << "fly " << setup.name << ": "
         << ToString(plan.result.status) << "\n";
+    if (plan.result.status == PlanStatus::kPathBlocked) {
+      out << "  " << DescribeBlockedPath(plan) << "\n";
+    }
     return finish(kExitNoPath);
   }
   const TrajectoryResult& trajectory = *plan.trajectory;

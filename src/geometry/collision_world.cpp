@@ -190,6 +190,22 @@ std::optional<size_t> CollisionWorld::OverlappingBox(const Vec3& p) const {
   return found;
 }
 
+std::optional<size_t> CollisionWorld::BlockingBox(const Vec3& p) const {
+  constexpr double kReach = 1e-3;  // [m] a point found by bisection sits at a surface
+  const Vec3 reach = Vec3::Constant(kReach);
+  std::optional<size_t> found;
+  double nearest = kReach;
+  tree_->AnyCandidate(Aabb{p - reach, p + reach}, [&](size_t i) {
+    const Vec3 outside = (grown_[i].min - p).cwiseMax(p - grown_[i].max).cwiseMax(0.0);
+    if (outside.norm() <= nearest) {
+      nearest = outside.norm();
+      found = i;
+    }
+    return false;  // every candidate: the nearest one
+  });
+  return found;
+}
+
 Projection CollisionWorld::ProjectIntoFreeBounds(const Vec3& p) const {
   const Vec3 q = p.cwiseMax(free_bounds_.min).cwiseMin(free_bounds_.max);
   return {q, (q - p).norm()};

@@ -63,6 +63,9 @@ class CollisionWorld {
 
   // Index of a map box that the vehicle's box at p overlaps (without clearance), if any.
   std::optional<size_t> OverlappingBox(const Vec3& p) const;
+  // Index of the map box that makes p not free, for messages: the one whose grown box (by
+  // Margin()) contains p or lies within a millimetre of it; nothing when only the bounds do.
+  std::optional<size_t> BlockingBox(const Vec3& p) const;
 
   // All queries are const and may run on several threads at once.
 

@@ -177,6 +177,16 @@ LatticeParams FallbackLattice(const Aabb& free_bounds) {
 
 namespace {
 
+// What makes p not free, in words.
+std::string BlockedBy(const Map& map, const CollisionWorld& world, const Vec3& p) {
+  const std::optional<size_t> box = world.BlockingBox(p);
+  if (!box) return "the map's bounds (less the vehicle's half size and the clearance)";
+  const std::string name = "box '" + map.boxes[*box].name + "'";
+  if (world.OverlappingBox(p)) return name + " (the vehicle would overlap it)";
+  return name + " (within the " + FormatNumber(world.params().clearance) +
+         " m clearance kept from it)";
+}
+
 // One leg from `from` to `to` with the set-up's planner, seeded with `seed`, and the lattice
 // when RRT* gives up; fills the outcome's result, planner and lattice.
 void PlanLeg(const FlightSetup& setup, const CollisionWorld& world, const Vec3& from,
@@ -194,6 +204,9 @@ void PlanLeg(const FlightSetup& setup, const CollisionWorld& world, const Vec3& 
   config.waypoints = settings.waypoints;
   outcome->planner = config.kind;
   outcome->result = MakePlanner(config, context)->Plan(from, to);
+  if (outcome->result.status == PlanStatus::kPathBlocked) {
+    outcome->blocked_by = BlockedBy(setup.map, world, outcome->result.stats.blocked_point);
+  }
   if (config.kind == "lattice") {
     outcome->lattice = LatticeStats{outcome->result.stats.nodes, outcome->result.stats.edges,
                                     outcome->result.stats.build_time};
@@ -225,6 +238,8 @@ void AppendLeg(PlanOutcome&& leg, PlanOutcome* mission) {
   if (all.status == PlanStatus::kSolved && next.status != PlanStatus::kSolved) {
     all.status = next.status;
     all.stats.blocked_leg = next.stats.blocked_leg;
+    all.stats.blocked_point = next.stats.blocked_point;
+    mission->blocked_by = leg.blocked_by;
   }
   if (next.status == PlanStatus::kSolved && !all.path.empty()) {
     all.path.insert(all.path.end(), next.path.begin() + 1, next.path.end());
@@ -354,6 +369,16 @@ PlanOutcome PlanFlight(const FlightSetup& setup, bool with_trajectory) {
     outcome.trajectory = TrajectoryAlong(setup, outcome.result.path);
   }
   return outcome;
+}
+
+std::string DescribeBlockedPath(const PlanOutcome& plan) {
+  const PlanStats& stats = plan.result.stats;
+  const std::string at = "(" + FormatVector(stats.blocked_point, ", ") + ") m";
+  const std::string where = stats.blocked_leg == 0
+                                ? "the start " + at + " is not free"
+                                : "the leg to point " + std::to_string(stats.blocked_leg) +
+                                      " (0 is the start) leaves free space at " + at;
+  return where + ": " + plan.blocked_by;
 }
 
 LatticeParams LatticeParamsFor(const FlightSetup& setup) {

@@ -58,7 +58,14 @@ struct PlanOutcome {
   std::optional<LatticeStats> lattice;
   std::string planner;            // the planner's name, as registered
   double fallback_spacing = 0.0;  // [m] of the lattice that took over from RRT* (0: none)
+  // PlanStatus::kPathBlocked: what blocks the given path at result.stats.blocked_point, e.g.
+  // "box 'wall' (within the 0.15 m kept from it)" or "the map's bounds"
+  std::string blocked_by;
 };
+
+// A given path that is blocked, in words: "point 2 (0 is the start) at (1, 2, 0.5) m is not
+// free: box 'wall' ..." or "the leg to point 2 leaves free space at (...) m: box 'wall' ...".
+std::string DescribeBlockedPath(const PlanOutcome& plan);
 
 // The planner a set-up uses: [planner] kind, where "auto" is the lattice for a city-sized map
 // and RRT* otherwise.

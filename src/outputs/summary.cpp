@@ -55,6 +55,15 @@ JsonObject RunSummary(const FlightSetup& setup, const MissionResult& result,
   AddPoint(&summary, "goal", plan.goal.used);
   summary.Add("planning_time_s", plan.result.stats.planning_time)
       .Add("planner_iterations", static_cast<long long>(plan.result.stats.iterations));
+  if (plan.result.status == PlanStatus::kPathBlocked) {
+    // where a given path is blocked, and by what (a sweep or a script reads it)
+    const PlanStats& stats = plan.result.stats;
+    summary.Add("blocked_leg", stats.blocked_leg)
+        .Add("blocked_point",
+             std::vector<double>(stats.blocked_point.data(), stats.blocked_point.data() + 3))
+        .Add("blocked_by", plan.blocked_by)
+        .Add("blocked", DescribeBlockedPath(plan));
+  }
   if (result.status != MissionStatus::kNoPath && plan.trajectory) {
     const TrajectoryResult& trajectory = *plan.trajectory;
     summary.Add("path_length_m", PathLength(plan.result.path))

@@ -8,6 +8,9 @@
 namespace aerobox {
 namespace {
 
+// Halvings of a blocked leg to find where it first leaves free space: 2^-20 of its length
+constexpr int kBlockedBisections = 20;
+
 class RrtStarPlanner : public Planner {
  public:
   RrtStarPlanner(const RrtStarParams& params, const PlannerContext& context)
@@ -52,25 +55,11 @@ class WaypointsPlanner : public Planner {
       : waypoints_(std::move(waypoints)), context_(context) {}
   PlanResult Plan(const Vec3& start, const Vec3& goal) override {
     const auto begin = std::chrono::steady_clock::now();
-    PlanResult result;
-    result.path = {start};
-    result.path.insert(result.path.end(), waypoints_.begin(), waypoints_.end());
-    result.path.push_back(goal);
-    result.status = PlanStatus::kSolved;
-    for (size_t i = 0; i < result.path.size(); ++i) {
-      if (!context_.validity.state(result.path[i]) ||
-          (i > 0 && !context_.validity.motion(result.path[i - 1], result.path[i]))) {
-        result.status = PlanStatus::kPathBlocked;
-        result.stats.blocked_leg = static_cast<int>(i);
-        result.path.clear();
-        break;
-      }
-    }
-    result.stats.iterations = 0;
-    if (result.status == PlanStatus::kSolved) {
-      result.stats.final_cost = result.stats.first_cost = PathLength(result.path);
-      result.stats.time_to_first_solution = 0.0;
-    }
+    std::vector<Vec3> path = {start};
+    path.insert(path.end(), waypoints_.begin(), waypoints_.end());
+    path.push_back(goal);
+    PlanResult result = CheckGivenPath(std::move(path), context_.validity);
+    result.stats.time_to_first_solution = result.status == PlanStatus::kSolved ? 0.0 : -1.0;
     result.stats.planning_time =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
     return result;
@@ -82,6 +71,36 @@ class WaypointsPlanner : public Planner {
 };
 
 }  // namespace
+
+PlanResult CheckGivenPath(std::vector<Vec3> path, const Validity& validity) {
+  PlanResult result;
+  for (size_t i = 0; i < path.size(); ++i) {
+    if (!validity.state(path[i])) {
+      result.status = PlanStatus::kPathBlocked;
+      result.stats.blocked_leg = static_cast<int>(i);
+      result.stats.blocked_point = path[i];
+      return result;
+    }
+    if (i > 0 && !validity.motion(path[i - 1], path[i])) {
+      // where along the leg it first leaves free space: bisection on the exact segment check
+      const Vec3 a = path[i - 1];
+      const Vec3 d = path[i] - a;
+      double free = 0.0, blocked = 1.0;
+      for (int k = 0; k < kBlockedBisections; ++k) {
+        const double mid = 0.5 * (free + blocked);
+        (validity.motion(a, a + mid * d) ? free : blocked) = mid;
+      }
+      result.status = PlanStatus::kPathBlocked;
+      result.stats.blocked_leg = static_cast<int>(i);
+      result.stats.blocked_point = a + blocked * d;
+      return result;
+    }
+  }
+  result.status = PlanStatus::kSolved;
+  result.stats.final_cost = result.stats.first_cost = PathLength(path);
+  result.path = std::move(path);
+  return result;
+}
 
 Registry<PlannerFactory>& Planners() {
   static Registry<PlannerFactory> registry = [] {

@@ -44,6 +44,12 @@ struct PlannerConfig {
 using PlannerFactory =
     std::function<std::unique_ptr<Planner>(const PlannerConfig&, const PlannerContext&)>;
 
+// A path given whole (the waypoints planner, a user's planner), checked point by point and leg
+// by leg: kSolved with the path and its length, or kPathBlocked with the first point or leg that
+// is not free (stats.blocked_leg: the leg's end, 0 is the start) and the first position along it
+// that is not free (stats.blocked_point, exact to a micrometre along a metre of leg).
+PlanResult CheckGivenPath(std::vector<Vec3> path, const Validity& validity);
+
 // The registry, with "rrt_star", "lattice" and "waypoints" in it.
 Registry<PlannerFactory>& Planners();
 

@@ -67,6 +67,8 @@ struct PlanStats {
   size_t edges = 0;
   double build_time = 0.0;
   int blocked_leg = -1;  // kPathBlocked: the first point or leg (ending there) not free
+  // kPathBlocked: the first position along that leg (or that point) that is not free [m]
+  Vec3 blocked_point = Vec3::Zero();
   // (time [s], tree path length [m]) each time the best path improved: the anytime curve
   std::vector<std::pair<double, double>> cost_history;
 };

@@ -548,19 +548,9 @@ PlanResult PythonPlanner::Plan(const Vec3& start, const Vec3& goal) {
   // the path goes from the start to the goal, each leg free
   if ((path.front() - start).norm() > 1e-6) path.insert(path.begin(), start);
   if ((path.back() - goal).norm() > 1e-6) path.push_back(goal);
-  for (size_t i = 0; i < path.size(); ++i) {
-    if (!context_.validity.state(path[i]) ||
-        (i > 0 && !context_.validity.motion(path[i - 1], path[i]))) {
-      result.status = PlanStatus::kPathBlocked;
-      result.stats.blocked_leg = static_cast<int>(i);
-      return result;
-    }
-  }
-  result.status = PlanStatus::kSolved;
-  double length = 0.0;
-  for (size_t i = 1; i < path.size(); ++i) length += (path[i] - path[i - 1]).norm();
-  result.stats.final_cost = length;
-  result.path = std::move(path);
+  const double planning_time = result.stats.planning_time;
+  result = CheckGivenPath(std::move(path), context_.validity);
+  result.stats.planning_time = planning_time;
   return result;
 }
 

@@ -261,6 +261,30 @@ TEST_CASE("fly a given trajectory: aerobox's own trajectory.csv flown as it is")
   CHECK(refused.err.find("bad.csv:3: sample:") != std::string::npos);
 }
 
+TEST_CASE(
+    "a blocked given path: exit 3, the leg, the point and the box, in the table and the summary") {
+  const TempDir dir;
+  dir.Write("room.txt", kRoom);
+  const std::string scenario =
+      dir.Write("blocked.toml",
+                "map = \"room.txt\"\nstart = [1, 1, 1]\ngoal = [4, 4, 1]\n[planner]\n"
+                "kind = \"waypoints\"\nwaypoints = [[1, 4, 1], [2.5, 4, 1], [2.5, 1, 1]]\n");
+  const std::string out = (dir.path() / "out").string();
+  const Run run = Aerobox({"fly", scenario, "--no-video", "--quiet", "--out", out});
+  CHECK(run.code == kExitNoPath);
+  CAPTURE(run.out);
+  // the third leg, from (2.5, 4, 1) down to (2.5, 1, 1), enters block_0 (y 2..3) from above
+  CHECK(run.out.find("the leg to point 3 (0 is the start) leaves free space at (2.5, 3.") !=
+        std::string::npos);
+  CHECK(run.out.find("box 'block_0' (within the ") != std::string::npos);
+  const nlohmann::json summary = testing::ReadSummary(fs::path(out) / "summary.json");
+  CHECK(summary["status"] == "no path");
+  CHECK(summary["blocked_leg"] == 3);
+  CHECK(summary["blocked_by"].get<std::string>().find("box 'block_0'") == 0);
+  CHECK(summary["blocked_point"][0] == doctest::Approx(2.5));
+  CHECK(summary["blocked_point"][1] > 3.0);
+}
+
 TEST_CASE("fly: --max-speed, --max-accel, --telemetry-rate, --playback, scenarios named by stem") {
   const TempDir dir;
   dir.Write("room.txt", "boundary 0 0 0 6 6 2\nblock 2.5 0 0 3 4.5 2\n");

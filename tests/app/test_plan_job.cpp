@@ -247,6 +247,19 @@ TEST_CASE("planners by name: given waypoints are checked, and a user's planner i
       PlanFlight(SnakeSetup(dir, "kind = \"waypoints\"\nwaypoints = [[3, 0.5, 0.5]]\n"));
   CHECK(blocked.result.status == PlanStatus::kPathBlocked);
   CHECK(blocked.result.stats.blocked_leg == 1);
+  CHECK(blocked.result.stats.blocked_point.isApprox(Vec3(3, 0.5, 0.5)));
+  CHECK(blocked.blocked_by.find("box 'block_0' (the vehicle would overlap it)") == 0);
+  // a leg through a wall: where it first leaves free space, and the box, within its clearance
+  const PlanOutcome crossing =
+      PlanFlight(SnakeSetup(dir, "kind = \"waypoints\"\nwaypoints = [[0.3, 1.0, 0.5]]\n"));
+  REQUIRE(crossing.result.status == PlanStatus::kPathBlocked);
+  CHECK(crossing.result.stats.blocked_leg == 1);
+  const Vec3 margin = SnakeSetup(dir, "").PlannerCollision().Margin();
+  // the vehicle's centre meets the wall (y = 0.45) grown by the vehicle's half size + clearance
+  CHECK(crossing.result.stats.blocked_point.isApprox(Vec3(0.3, 0.45 - margin.y(), 0.5), 1e-5));
+  CHECK(crossing.blocked_by.find("box 'block_0' (within the ") == 0);
+  CHECK(DescribeBlockedPath(crossing).find("the leg to point 1 (0 is the start) leaves free "
+                                           "space at (0.3, ") == 0);
 
   if (Planners().Find("straight") == nullptr) {
     Planners().Register("straight", [](const PlannerConfig&, const PlannerContext& context) {
