@@ -71,6 +71,21 @@ TEST_CASE("check prints a summary of a good map and exits 0") {
   CHECK(cf.out.find("vehicle   crazyflie: 0.03 kg") != std::string::npos);
   CHECK(cf.out.find("motor lag 0.03 s") != std::string::npos);
   CHECK(cf.out.find("control   se3 at 500 Hz") != std::string::npos);
+  CHECK(cf.out.find("unknown   none: the planner knows every box") != std::string::npos);
+
+  // boxes found in flight: how many, the sensor, the replanning
+  const std::string unknown =
+      dir.Write("unknown.toml",
+                "map = \"room.txt\"\nstart = [1, 1, 0]\ngoal = [4, 4, 1]\nunknown = [0]\n"
+                "[sensing]\nkind = \"camera\"\nrange = 2.5\n[replan]\niterations = 200\n");
+  const Run u = Aerobox({"check", unknown});
+  CAPTURE(u.out);
+  CAPTURE(u.err);
+  CHECK(u.code == kExitReachedGoal);
+  CHECK(u.out.find("unknown   1 of 2 boxes, found in flight by a depth camera along body x") !=
+        std::string::npos);
+  CHECK(u.out.find("2.5 m at 30 Hz; replanning 0.3 s ahead, RRT* 200 iterations") !=
+        std::string::npos);
 }
 
 TEST_CASE("bad maps and points exit 2 with file:line messages") {
