@@ -120,6 +120,12 @@ int FlyInto(const OutputFolder& output, const FlightSetup& setup, const FlyOptio
   if (const std::string warning = LimitsWarning(setup); !warning.empty()) {
     err << "aerobox: warning: " << warning << "\n";
   }
+  if (setup.HasUnknown() && setup.sensing.kind == SensingParams::Kind::kCamera &&
+      !setup.flight.face_travel) {
+    err << "aerobox: warning: the depth camera looks along the body's x axis and the yaw is "
+           "held ([flight] yaw = \"hold\"): flying any other way, it sees sideways; yaw = "
+           "\"travel\" turns it along the travel\n";
+  }
   FlightSetup recorded = setup;
   recorded.planning.rrt.record_tree = options.show_tree;
   if (options.progress) err << "fly " << setup.name << ": planning\n";

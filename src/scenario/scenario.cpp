@@ -919,7 +919,10 @@ Scenario ScenarioFromTable(const toml::table& table, const std::string& file) {
         ReadController(*section, file, LineOf(node), &scenario.controller);
         scenario.drag_feedforward_given = section->get("drag_feedforward") != nullptr;
       }
-      if (name == "flight") ReadFlight(*section, file, &scenario.flight);
+      if (name == "flight") {
+        ReadFlight(*section, file, &scenario.flight);
+        scenario.yaw_given = scenario.yaw_given || section->get("yaw") != nullptr;
+      }
     } else if (name == "wind" || name == "aero" || name == "sensors") {
       const toml::table* section = node.as_table();
       if (section == nullptr) throw InputError(where, name, "expected a table [" + name + "]");
@@ -1106,6 +1109,12 @@ FlightSetup SetupFrom(const std::string& path, std::optional<Scenario> scenario,
       }
       setup.unknown.resize(setup.map.boxes.size(), true);
     }
+  }
+  // a depth camera looks along body x: unless the yaw was chosen, it turns with the travel, or
+  // the vehicle would fly sideways into what it cannot see
+  if (scenario && !scenario->yaw_given && setup.HasUnknown() &&
+      setup.sensing.kind == SensingParams::Kind::kCamera) {
+    setup.flight.face_travel = true;
   }
   if (setup.planning.trajectory_method == "given" && !setup.planning.given_trajectory.empty()) {
     // a given trajectory starts and ends where it does

@@ -68,11 +68,12 @@ struct Scenario {
   QuadParams vehicle;                   // the kind's values with the table's overrides
   ControllerConfig controller;          // [controller]
   bool drag_feedforward_given = false;  // [controller] drag_feedforward (else it follows [aero])
-  FlightParams flight;                  // [flight]
-  WindParams wind;                      // [wind]
-  AeroParams aero;                      // [aero]
-  bool aero_given = false;              // [aero] was there (else wind brings drag)
-  SensorParams sensors;                 // [sensors]
+  bool yaw_given = false;   // [flight] yaw (else a depth camera turns the yaw along the travel)
+  FlightParams flight;      // [flight]
+  WindParams wind;          // [wind]
+  AeroParams aero;          // [aero]
+  bool aero_given = false;  // [aero] was there (else wind brings drag)
+  SensorParams sensors;     // [sensors]
 };
 
 // A trajectory in the form aerobox's trajectory.csv has (header t,x,y,z,vx,vy,vz,ax,ay,az, one

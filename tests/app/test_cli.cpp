@@ -86,6 +86,18 @@ TEST_CASE("check prints a summary of a good map and exits 0") {
         std::string::npos);
   CHECK(u.out.find("2.5 m at 30 Hz; replanning 0.3 s ahead, RRT* 200 iterations") !=
         std::string::npos);
+  // a depth camera turns the yaw along the travel, unless the scenario chose the yaw
+  CHECK(u.out.find("; yaw along the travel") != std::string::npos);
+  const std::string held =
+      dir.Write("held.toml",
+                "map = \"room.txt\"\nstart = [1, 1, 0]\ngoal = [4, 4, 1]\nunknown = [0]\n"
+                "[sensing]\nkind = \"camera\"\n[flight]\nyaw = \"hold\"\n");
+  const Run h = Aerobox({"check", held});
+  CHECK(h.out.find("; yaw held") != std::string::npos);
+  const Run flown =
+      Aerobox({"fly", held, "--no-video", "--quiet", "--out", (dir.path() / "held").string()});
+  CHECK(flown.err.find("warning: the depth camera looks along the body's x axis and the yaw is "
+                       "held") != std::string::npos);
 }
 
 TEST_CASE("bad maps and points exit 2 with file:line messages") {
