@@ -92,7 +92,7 @@ std::string BarChart(const std::string& title, const std::string& unit,
           << "\" stroke=\"#222\" stroke-width=\"1.5\"/>\n";
     }
     svg << "<text x=\"" << Number(kLabel + std::max(w, end) + 6, 1) << "\" y=\"" << y + 15 << "\">"
-        << Number(values[i], unit == "%" ? 0 : 2) << " " << XmlEscaped(unit) << "</text>\n";
+        << Number(values[i], unit == "%" ? 0 : 4) << " " << XmlEscaped(unit) << "</text>\n";
   }
   const int axis = kHead + kRow * static_cast<int>(labels.size()) + 4;
   svg << "<line x1=\"" << kLabel << "\" x2=\"" << kLabel + kBar << "\" y1=\"" << axis << "\" y2=\""
@@ -177,9 +177,9 @@ const charts = [
      data: D.cells.map((c) => (c.results ? 100 * c.reached / c.results : 0))}]},
     options: options('Runs that reached their goal, per cell', '%')}),
   new Chart(document.getElementById('tracking'), {type: 'bar', data: {labels, datasets: [
-    {label: 'median [cm]', backgroundColor: '#3b75af', data: D.cells.map((c) => 100 * (c.tracking_rms[0] || 0))},
-    {label: '90th percentile [cm]', backgroundColor: '#a9c4de', data: D.cells.map((c) => 100 * (c.tracking_rms[1] || 0))}]},
-    options: options('Tracking RMS per cell', 'cm')}),
+    {label: 'median [m]', backgroundColor: '#3b75af', data: D.cells.map((c) => c.tracking_rms[0] || 0)},
+    {label: '90th percentile [m]', backgroundColor: '#a9c4de', data: D.cells.map((c) => c.tracking_rms[1] || 0)}]},
+    options: options('Tracking RMS per cell', 'm')}),
 ];
 if (/#selftest/.test(location.hash)) {
   const out = document.getElementById('selftest');
@@ -320,8 +320,8 @@ std::vector<std::string> WriteSweepReport(const Json& manifest,
          {"failures", failures}});
     labels.push_back(CellLabel(cell));
     success.push_back(rate);
-    rms_median.push_back(100 * Percentile(cell.tracking_rms, 0.5));
-    rms_p90.push_back(100 * Percentile(cell.tracking_rms, 0.9));
+    rms_median.push_back(Percentile(cell.tracking_rms, 0.5));
+    rms_p90.push_back(Percentile(cell.tracking_rms, 0.9));
   }
   md << "\n![runs that reached their goal](success.svg)\n\n"
      << "![tracking RMS, median and 90th percentile](tracking.svg)\n";
@@ -338,7 +338,7 @@ std::vector<std::string> WriteSweepReport(const Json& manifest,
   WriteFileAtomically(
       paths[2], BarChart("Runs that reached their goal, per cell", "%", labels, success, {}, 100));
   WriteFileAtomically(
-      paths[3], BarChart("Tracking RMS per cell: median, whisker to the 90th percentile", "cm",
+      paths[3], BarChart("Tracking RMS per cell: median, whisker to the 90th percentile", "m",
                          labels, rms_median, rms_p90, top_rms * 1.1));
   // report.html: the table and the charts in a browser, Chart.js copied in
   const Json data = {{"name", name},       {"runs", total}, {"results", with_result},

@@ -32,6 +32,11 @@ for file in report.md report.csv success.svg tracking.svg sweep.json; do
 done
 grep -q '| 2.0 | 3 | 3/3 (100 %)' "$work/whole/report.md" || fail "report.md: $(cat "$work/whole/report.md")"
 [ "$(wc -l < "$work/whole/report.csv")" -eq 3 ] || fail "report.csv: a header and 2 cells"
+# one unit for the tracking error in the table, the chart and the page: metres
+grep -q 'tracking RMS median / p90 \[m\]' "$work/whole/report.md" || fail "report.md: RMS unit"
+grep -q ' m</text>' "$work/whole/tracking.svg" || fail "tracking.svg: not in metres"
+! grep -q -e ' cm<' -e '\[cm\]' -e "'cm'" "$work/whole/tracking.svg" "$work/whole/report.html" ||
+  fail "a chart in cm"
 # the first run alone keeps a video; no run keeps telemetry (the defaults of [keep])
 [ "$(find "$work/whole/runs" -name video.mp4 | wc -l)" -eq 1 ] || fail "one video expected"
 [ "$(find "$work/whole/runs" -name telemetry.csv | wc -l)" -eq 0 ] || fail "no telemetry expected"
