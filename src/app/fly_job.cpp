@@ -187,6 +187,9 @@ int FlyInto(const OutputFolder& output, const FlightSetup& setup, const FlyOptio
                 : std::string())
         << "\n"
         << "  flight      " << ToString(flight.status) << " after " << flight.time << " s ("
+        << (flight.takeoff_time > 0 ? FormatNumber(std::round(flight.takeoff_time * 100) / 100) +
+                                          " s of it lifting off the floor, "
+                                    : std::string())
         << result.flight_wall_time << " s wall)";
   if (!flight.obstacle.empty()) table << ", hit " << flight.obstacle;
   if (!flight.message.empty()) table << ": " << flight.message;

@@ -103,10 +103,16 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
     const Vec3 x_W = sim->VehicleState().q_WB * Vec3::UnitX();
     yaw = std::atan2(x_W.y(), x_W.x());
   }
-  // on the floor until the first step without floor contact
-  bool airborne = sim->VehicleContacts().empty();
+  // on the floor until the first step without floor contact. Before the first step MuJoCo has
+  // found no contact for a vehicle resting exactly on the floor: one that sits still right below
+  // the trajectory's start (PlaceVehicleAtStart leaves it on the floor) rests there too
   const Vec3 start = current.evaluate(0.0, kPosition);
-  bool taking_off = !airborne && (sim->VehicleState().p_W - start).norm() > kTakeoffTolerance;
+  const State initial = sim->VehicleState();
+  const bool below_start = initial.v_W.norm() < kTakeoffSpeed &&
+                           (initial.p_W - start).head<2>().norm() < kTakeoffTolerance &&
+                           start.z() - initial.p_W.z() > kTakeoffTolerance;
+  bool airborne = sim->VehicleContacts().empty() && !below_start;
+  bool taking_off = !airborne && (initial.p_W - start).norm() > kTakeoffTolerance;
   double takeoff_time = 0.0;  // [s] of flight when the reference started
   double squared_error_sum = 0.0;
   long samples = 0;
@@ -219,10 +225,13 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
       }
     }
     const double error = (state.p_W - setpoint.p_W).norm();
-    if (control_step) {
+    if (control_step && !taking_off) {
+      // tracking from when the trajectory's clock starts: the take-off is reported on its own
       squared_error_sum += error * error;
       ++samples;
       result.max_error = std::max(result.max_error, error);
+    }
+    if (control_step) {
       const double c =
           loop.clearance ? loop.clearance(state.p_W) : std::numeric_limits<double>::infinity();
       result.min_clearance = std::min(result.min_clearance, c);
@@ -297,6 +306,7 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
     if (contacts.empty()) airborne = true;
   }
   result.time = sim->time() - t0;
+  result.takeoff_time = takeoff_time;
   result.rms_error = samples > 0 ? std::sqrt(squared_error_sum / samples) : 0.0;
   if (sensing && samples > 0) result.estimate_rms_error = std::sqrt(estimate_squared_sum / samples);
   if (air) sim->SetExternalWrench(Vec3::Zero(), Vec3::Zero());

@@ -65,10 +65,13 @@ struct TelemetrySample {
 
 struct FlightResult {
   FlightStatus status = FlightStatus::kTimeout;
-  double time = 0.0;           // [s] when the flight ended
+  double time = 0.0;  // [s] when the flight ended
+  // [s] of lifting from the floor to the trajectory's start before its clock started (0: the
+  // flight began at the start); the tracking errors count from then
+  double takeoff_time = 0.0;
   std::string obstacle;        // the geom hit, for kCollision
   std::string message;         // MuJoCo's warning, for kSimulationWarning
-  double rms_error = 0.0;      // [m] tracking error over the flight
+  double rms_error = 0.0;      // [m] tracking error from the trajectory's start
   double max_error = 0.0;      // [m]
   double min_clearance = 0.0;  // [m]
   long steps = 0;

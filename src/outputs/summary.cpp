@@ -98,6 +98,7 @@ JsonObject RunSummary(const FlightSetup& setup, const MissionResult& result,
         .Add("rotor_saturated_s", flight.saturated_time)
         .Add("tracking_rms_m", flight.rms_error)
         .Add("tracking_max_m", flight.max_error)
+        .Add("takeoff_s", flight.takeoff_time)
         .Add("min_clearance_m", flight.min_clearance)
         .Add("collisions", flight.status == FlightStatus::kCollision ? 1 : 0)
         .Add("collision_with", flight.obstacle)

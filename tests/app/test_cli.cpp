@@ -289,6 +289,24 @@ TEST_CASE("fly a given trajectory: aerobox's own trajectory.csv flown as it is")
 }
 
 TEST_CASE(
+    "a flight from the floor: the take-off on its own, tracking from the trajectory's start") {
+  const TempDir dir;
+  const std::string room = dir.Write("room.txt", kRoom);
+  const std::string out = (dir.path() / "out").string();
+  // the start on the floor: the trajectory starts 0.1 m above where the vehicle rests
+  const Run run = Aerobox(
+      {"fly", room, "--start", "1,1,0", "--goal", "4,4,1", "--no-video", "--quiet", "--out", out});
+  CAPTURE(run.out);
+  REQUIRE(run.code == kExitReachedGoal);
+  CHECK(run.out.find("s of it lifting off the floor") != std::string::npos);
+  const nlohmann::json summary = testing::ReadSummary(fs::path(out) / "summary.json");
+  CHECK(summary["takeoff_s"].get<double>() > 0.1);
+  CHECK(summary["takeoff_s"].get<double>() < 3.0);
+  // before, the 0.1 m from the floor to the start was counted as a tracking error
+  CHECK(summary["tracking_max_m"].get<double>() < 0.05);
+}
+
+TEST_CASE(
     "a blocked given path: exit 3, the leg, the point and the box, in the table and the summary") {
   const TempDir dir;
   dir.Write("room.txt", kRoom);
