@@ -91,6 +91,27 @@ void CheckEndpoint(const FlightSetup& setup, const Vec3& point, const std::strin
   }
 }
 
+// The boxes found in flight, the sensor that finds them and how the flight replans, in words.
+std::string DescribeUnknownBoxes(const FlightSetup& setup) {
+  if (!setup.HasUnknown()) return "none: the planner knows every box";
+  const long unknown = std::count(setup.unknown.begin(), setup.unknown.end(), true);
+  const SensingParams& sensing = setup.sensing;
+  const ReplanParams& r = setup.replan;
+  std::ostringstream out;
+  out << unknown << " of " << setup.map.boxes.size() << " boxes, found in flight by ";
+  if (sensing.kind == SensingParams::Kind::kCamera) {
+    out << "a depth camera along body x (" << FormatNumber(sensing.fov_horizontal) << " x "
+        << FormatNumber(sensing.fov_vertical) << " rad)";
+  } else {
+    out << "a range sensor all round";
+  }
+  out << ", " << FormatNumber(sensing.range) << " m at " << FormatNumber(sensing.rate)
+      << " Hz; replanning " << FormatNumber(r.horizon) << " s ahead, RRT* " << r.iterations
+      << " iterations after its first solution (at most " << FormatNumber(r.time_budget) << " s), "
+      << r.max_attempts << " attempts while braked";
+  return out.str();
+}
+
 int RunCheck(const FlightSetup& setup, std::ostream& out) {
   const Map& map = setup.map;
   const auto row = [&out](const char* label) -> std::ostream& {
@@ -172,26 +193,7 @@ int RunCheck(const FlightSetup& setup, std::ostream& out) {
                  << FormatNumber(p.trajectory.max_speed) << " m/s, "
                  << FormatNumber(p.trajectory.max_accel) << " m/s^2, clearance "
                  << FormatNumber(p.trajectory_clearance) << " m\n";
-  row("unknown");
-  if (!setup.HasUnknown()) {
-    out << "none: the planner knows every box\n";
-  } else {
-    // the boxes found in flight, the sensor that finds them and how the flight replans
-    const long unknown = std::count(setup.unknown.begin(), setup.unknown.end(), true);
-    const SensingParams& sensing = setup.sensing;
-    const ReplanParams& r = setup.replan;
-    out << unknown << " of " << map.boxes.size() << " boxes, found in flight by ";
-    if (sensing.kind == SensingParams::Kind::kCamera) {
-      out << "a depth camera along body x (" << FormatNumber(sensing.fov_horizontal) << " x "
-          << FormatNumber(sensing.fov_vertical) << " rad)";
-    } else {
-      out << "a range sensor all round";
-    }
-    out << ", " << FormatNumber(sensing.range) << " m at " << FormatNumber(sensing.rate)
-        << " Hz; replanning " << FormatNumber(r.horizon) << " s ahead, RRT* " << r.iterations
-        << " iterations after its first solution (at most " << FormatNumber(r.time_budget)
-        << " s), " << r.max_attempts << " attempts while braked\n";
-  }
+  row("unknown") << DescribeUnknownBoxes(setup) << "\n";
   const std::vector<size_t> outside = BoxesOutsideBounds(map);
   row("outside") << outside.size() << (outside.size() == 1 ? " box reaches" : " boxes reach")
                  << " outside the bounds (kept)\n";
