@@ -237,6 +237,10 @@ void RenderOutputs::OnFlightEnd(const Simulation& sim, const FlightResult& resul
           "yellow: path   blue-red: trajectory, slow-fast\n"
           "black: flown   green: start   red: goal   inset: from above") +
       (setup_.HasUnknown() ? "\nfaint: never seen   grey: paths given up when replanning" : "");
+  if (result.status == FlightStatus::kCollision) {
+    overview.collision = sim.VehicleState().p_W;
+    overview.legend += "\nmagenta: where it hit " + result.obstacle;
+  }
   Frame(Hud(result.time, sim.VehicleState(), setup_.map.bounds.min.z(), ToString(result.status)),
         {CameraKind::kOverview, ""}, overview);
   WriteFileAtomically((fs::path(folder_) / "overview.png").string(), EncodePng(image_));

@@ -129,6 +129,9 @@ struct Renderer::Impl {
     if (overlay.start) AddSphere(*overlay.start, scale, kStart);
     if (overlay.goal) AddSphere(*overlay.goal, scale, kGoal);
     for (const Vec3& goal : overlay.via) AddSphere(goal, scale, kGoal);
+    // twice the other markers' size, in a colour no other line or marker has
+    static const float kCollision[4] = {0.95f, 0.1f, 0.95f, 0.9f};
+    if (overlay.collision) AddSphere(*overlay.collision, 2 * scale, kCollision);
   }
 
   // The chase camera's distance: pulled in along the line of sight when a map box (geom
@@ -272,6 +275,7 @@ void Renderer::CompileShaders() {
   every.start = p;
   every.goal = p + step;
   every.via = {p - step};
+  every.collision = p;
   every.text = "t 0.0 s";
   every.legend = "legend";
   every.tree = {{p, p + step}};

@@ -55,8 +55,9 @@ struct Overlay {
   std::vector<std::vector<Vec3>> abandoned;  // paths given up when replanning [m], in grey
   std::optional<Vec3> start;
   std::optional<Vec3> goal;
-  std::vector<Vec3> via;  // a mission's goals before the last, drawn as the goal is
-  std::string text;       // top-left text, lines separated by '\n'
+  std::vector<Vec3> via;          // a mission's goals before the last, drawn as the goal is
+  std::optional<Vec3> collision;  // where the flight hit a box [m]: a large magenta marker
+  std::string text;               // top-left text, lines separated by '\n'
   // the planner's tree, as (node, parent) edges in the order they were added; the first
   // `tree_shown` are drawn (at most kMaxTreeEdges of them, evenly chosen)
   std::vector<std::pair<Vec3, Vec3>> tree;

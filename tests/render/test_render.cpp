@@ -282,4 +282,24 @@ TEST_CASE("a path replanning gave up is drawn in grey") {
   CHECK(grey > 100);  // 6 m of line, 2 pixels wide
 }
 
+TEST_CASE("where a flight hit a box is marked in magenta") {
+  Simulation sim = SmallScene(Vec3(1, 1, 1));
+  Renderer renderer(&sim, RenderSettings(480, 360, Quality::kFast));
+  Image plain, marked;
+  Overlay overlay;
+  renderer.Render(CameraSpec{CameraKind::kOverview, ""}, overlay, &plain);
+  overlay.collision = Vec3(2, 2, 1);
+  renderer.Render(CameraSpec{CameraKind::kOverview, ""}, overlay, &marked);
+  int magenta = 0;  // pixels the marker changed into red and blue well above green
+  for (int y = 0; y < 360; ++y) {
+    for (int x = 0; x < 480; ++x) {
+      const std::uint8_t* a = plain.Pixel(x, y);
+      const std::uint8_t* b = marked.Pixel(x, y);
+      if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2]) continue;
+      magenta += b[0] > b[1] + 60 && b[2] > b[1] + 60;
+    }
+  }
+  CHECK(magenta > 50);  // a sphere of a few pixels' radius at least
+}
+
 }  // namespace aerobox
