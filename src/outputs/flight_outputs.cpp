@@ -211,8 +211,13 @@ void RenderOutputs::OnSample(const TelemetrySample& s) {
     overlay_.wind_W = s.wind_W;
     overlay_.wind_origin = s.state.p_W + Vec3(0, 0, 0.15);  // above the vehicle
   }
+  // from a camera that sees the whole map, the vehicle is a pixel or two: marked
+  const bool far =
+      options_.camera.kind == CameraKind::kOverview || options_.camera.kind == CameraKind::kTop;
+  overlay_.vehicle = far ? std::optional<Vec3>(s.state.p_W) : std::nullopt;
   Frame(Hud(s.t, s.state, setup_.map.bounds.min.z(), "flying", overlay_.wind_W), options_.camera,
         overlay_);
+  overlay_.vehicle.reset();
   if (png_due) {
     char name[32];
     std::snprintf(name, sizeof(name), "frame_%06d.png", png_frames_++);

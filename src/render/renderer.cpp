@@ -132,6 +132,8 @@ struct Renderer::Impl {
     // twice the other markers' size, in a colour no other line or marker has
     static const float kCollision[4] = {0.95f, 0.1f, 0.95f, 0.9f};
     if (overlay.collision) AddSphere(*overlay.collision, 2 * scale, kCollision);
+    static const float kVehicle[4] = {0.05f, 0.05f, 0.05f, 0.7f};
+    if (overlay.vehicle) AddSphere(*overlay.vehicle, 3 * scale, kVehicle);
   }
 
   // The chase camera's distance: pulled in along the line of sight when a map box (geom
@@ -276,6 +278,7 @@ void Renderer::CompileShaders() {
   every.goal = p + step;
   every.via = {p - step};
   every.collision = p;
+  every.vehicle = p;
   every.text = "t 0.0 s";
   every.legend = "legend";
   every.tree = {{p, p + step}};

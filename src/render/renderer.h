@@ -57,7 +57,10 @@ struct Overlay {
   std::optional<Vec3> goal;
   std::vector<Vec3> via;          // a mission's goals before the last, drawn as the goal is
   std::optional<Vec3> collision;  // where the flight hit a box [m]: a large magenta marker
-  std::string text;               // top-left text, lines separated by '\n'
+  // the vehicle [m], marked for a camera that sees the whole map, from which a 10 cm vehicle
+  // is a pixel or two (the overview and top cameras)
+  std::optional<Vec3> vehicle;
+  std::string text;  // top-left text, lines separated by '\n'
   // the planner's tree, as (node, parent) edges in the order they were added; the first
   // `tree_shown` are drawn (at most kMaxTreeEdges of them, evenly chosen)
   std::vector<std::pair<Vec3, Vec3>> tree;

@@ -302,4 +302,23 @@ TEST_CASE("where a flight hit a box is marked in magenta") {
   CHECK(magenta > 50);  // a sphere of a few pixels' radius at least
 }
 
+TEST_CASE("the vehicle is marked where a camera sees the whole map") {
+  Simulation sim = SmallScene(Vec3(1, 1, 1));
+  Renderer renderer(&sim, RenderSettings(480, 360, Quality::kFast));
+  Image plain, marked;
+  Overlay overlay;
+  renderer.Render(CameraSpec{CameraKind::kOverview, ""}, overlay, &plain);
+  overlay.vehicle = sim.VehicleState().p_W;
+  renderer.Render(CameraSpec{CameraKind::kOverview, ""}, overlay, &marked);
+  int darker = 0;  // pixels the see-through dark marker darkened
+  for (int y = 0; y < 360; ++y) {
+    for (int x = 0; x < 480; ++x) {
+      const std::uint8_t* a = plain.Pixel(x, y);
+      const std::uint8_t* b = marked.Pixel(x, y);
+      darker += b[0] + b[1] + b[2] + 30 < a[0] + a[1] + a[2];
+    }
+  }
+  CHECK(darker > 50);
+}
+
 }  // namespace aerobox
