@@ -188,10 +188,15 @@ int RunCheck(const FlightSetup& setup, std::ostream& out) {
         << FormatNumber(pos.latency) << " s); the controller flies on the estimator's state\n";
   }
   const PlanningSettings& p = setup.planning;
+  // a cap that is not set (min-time: the vehicle's limits decide) reads "no ... cap", not "inf"
+  const auto cap = [](double value, const char* unit, const char* what) {
+    return std::isfinite(value) ? FormatNumber(value) + " " + unit
+                                : std::string("no ") + what + " cap";
+  };
   row("planner") << PlannerKindFor(setup) << ", clearance " << FormatNumber(p.clearance)
                  << " m; trajectory " << p.trajectory_method << ", "
-                 << FormatNumber(p.trajectory.max_speed) << " m/s, "
-                 << FormatNumber(p.trajectory.max_accel) << " m/s^2, clearance "
+                 << cap(p.trajectory.max_speed, "m/s", "speed") << ", "
+                 << cap(p.trajectory.max_accel, "m/s^2", "acceleration") << ", clearance "
                  << FormatNumber(p.trajectory_clearance) << " m\n";
   row("unknown") << DescribeUnknownBoxes(setup) << "\n";
   const std::vector<size_t> outside = BoxesOutsideBounds(map);

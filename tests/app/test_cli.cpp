@@ -58,6 +58,8 @@ TEST_CASE("check prints a summary of a good map and exits 0") {
   // the settings in force
   CHECK(run.out.find("vehicle   tello: 0.08 kg") != std::string::npos);
   CHECK(run.out.find("control   cascade at 250 Hz") != std::string::npos);
+  // min-time: the vehicle's limits decide, no cap is set (it read "inf m/s")
+  CHECK(run.out.find("no speed cap, no acceleration cap") != std::string::npos);
   CHECK(run.out.find("start moved 0.125 m off the bounds/floor") != std::string::npos);
 
   // a scenario's tables, resolved
