@@ -215,6 +215,24 @@ TEST_CASE("the chase camera moves in front of a box that stands between it and t
 }  // namespace aerobox
 
 namespace aerobox {
+namespace {
+
+// Pixels that differ between two renders of one view and pass `test(after, before)` (RGB).
+template <typename Test>
+int CountChanged(const Image& before, const Image& after, Test&& test) {
+  int count = 0;
+  for (int y = 0; y < before.height; ++y) {
+    for (int x = 0; x < before.width; ++x) {
+      const std::uint8_t* a = before.Pixel(x, y);
+      const std::uint8_t* b = after.Pixel(x, y);
+      if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2]) continue;
+      count += test(b, a);
+    }
+  }
+  return count;
+}
+
+}  // namespace
 
 TEST_CASE("the overview's top-down inset fills the top-right corner and only that") {
   Simulation sim = SmallScene(Vec3(1, 1, 1));
@@ -270,15 +288,10 @@ TEST_CASE("a path replanning gave up is drawn in grey") {
   renderer.Render(CameraSpec{CameraKind::kOverview, ""}, overlay, &plain);
   overlay.abandoned.push_back({Vec3(0.5, 3.5, 1.0), Vec3(3.5, 3.5, 1.0), Vec3(3.5, 0.5, 1.0)});
   renderer.Render(CameraSpec{CameraKind::kOverview, ""}, overlay, &abandoned);
-  int grey = 0;  // pixels the path changed into grey: r, g and b alike
-  for (int y = 0; y < 360; ++y) {
-    for (int x = 0; x < 480; ++x) {
-      const std::uint8_t* a = plain.Pixel(x, y);
-      const std::uint8_t* b = abandoned.Pixel(x, y);
-      if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2]) continue;
-      grey += std::max({b[0], b[1], b[2]}) - std::min({b[0], b[1], b[2]}) < 25;
-    }
-  }
+  // pixels the path changed into grey: r, g and b alike
+  const int grey = CountChanged(plain, abandoned, [](const std::uint8_t* b, const std::uint8_t*) {
+    return std::max({b[0], b[1], b[2]}) - std::min({b[0], b[1], b[2]}) < 25;
+  });
   CHECK(grey > 100);  // 6 m of line, 2 pixels wide
 }
 
@@ -290,15 +303,10 @@ TEST_CASE("where a flight hit a box is marked in magenta") {
   renderer.Render(CameraSpec{CameraKind::kOverview, ""}, overlay, &plain);
   overlay.collision = Vec3(2, 2, 1);
   renderer.Render(CameraSpec{CameraKind::kOverview, ""}, overlay, &marked);
-  int magenta = 0;  // pixels the marker changed into red and blue well above green
-  for (int y = 0; y < 360; ++y) {
-    for (int x = 0; x < 480; ++x) {
-      const std::uint8_t* a = plain.Pixel(x, y);
-      const std::uint8_t* b = marked.Pixel(x, y);
-      if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2]) continue;
-      magenta += b[0] > b[1] + 60 && b[2] > b[1] + 60;
-    }
-  }
+  // pixels the marker changed into red and blue well above green
+  const int magenta = CountChanged(plain, marked, [](const std::uint8_t* b, const std::uint8_t*) {
+    return b[0] > b[1] + 60 && b[2] > b[1] + 60;
+  });
   CHECK(magenta > 50);  // a sphere of a few pixels' radius at least
 }
 
@@ -310,14 +318,10 @@ TEST_CASE("the vehicle is marked where a camera sees the whole map") {
   renderer.Render(CameraSpec{CameraKind::kOverview, ""}, overlay, &plain);
   overlay.vehicle = sim.VehicleState().p_W;
   renderer.Render(CameraSpec{CameraKind::kOverview, ""}, overlay, &marked);
-  int darker = 0;  // pixels the see-through dark marker darkened
-  for (int y = 0; y < 360; ++y) {
-    for (int x = 0; x < 480; ++x) {
-      const std::uint8_t* a = plain.Pixel(x, y);
-      const std::uint8_t* b = marked.Pixel(x, y);
-      darker += b[0] + b[1] + b[2] + 30 < a[0] + a[1] + a[2];
-    }
-  }
+  // pixels the see-through dark marker darkened
+  const int darker = CountChanged(plain, marked, [](const std::uint8_t* b, const std::uint8_t* a) {
+    return b[0] + b[1] + b[2] + 30 < a[0] + a[1] + a[2];
+  });
   CHECK(darker > 50);
 }
 
