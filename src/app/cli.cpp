@@ -106,9 +106,10 @@ std::string DescribeUnknownBoxes(const FlightSetup& setup) {
     out << "a range sensor all round";
   }
   out << ", " << FormatNumber(sensing.range) << " m at " << FormatNumber(sensing.rate)
-      << " Hz; replanning " << FormatNumber(r.horizon) << " s ahead, RRT* " << r.iterations
-      << " iterations after its first solution (at most " << FormatNumber(r.time_budget) << " s), "
-      << r.max_attempts << " attempts while braked";
+      << " Hz; replanning " << FormatNumber(r.horizon) << " s ahead, RRT* at most "
+      << r.search_iterations << " iterations to a first solution and " << r.iterations
+      << " after it (a " << FormatNumber(r.time_budget) << " s safety cap), " << r.max_attempts
+      << " attempts while braked";
   return out.str();
 }
 

@@ -131,6 +131,15 @@ int FlyInto(const OutputFolder& output, const FlightSetup& setup, const FlyOptio
   if (options.progress) err << "fly " << setup.name << ": planning\n";
   const MissionResult result = RunMission(recorded, parts);
   progress.reset();
+  if (result.flown && result.flight.status == FlightStatus::kControllerFailed) {
+    // the user's controller failed: bad input, as a file that does not import is (exit 2, the
+    // folder as it was); its traceback first, as Python prints one, then the message
+    const std::string& kind = setup.controller.kind;
+    const bool python = kind.find(':') != std::string::npos;
+    if (!result.flight.detail.empty()) err << result.flight.detail << "\n";
+    throw InputError({python ? kind.substr(0, kind.rfind(':')) : "", 0},
+                     python ? "--controller" : "controller.kind", result.flight.message);
+  }
 
   // summary.json and the table
   const PlanOutcome& plan = result.plan;
@@ -173,7 +182,12 @@ int FlyInto(const OutputFolder& output, const FlightSetup& setup, const FlyOptio
   table << "fly " << setup.name << " (seed " << setup.seed << ")\n"
         << DescribeMoves(plan.start, plan.goal) << "  path        " << PathLength(plan.result.path)
         << " m, " << plan.result.path.size() << " waypoints, planned in "
-        << plan.result.stats.planning_time << " s\n"
+        << plan.result.stats.planning_time << " s"
+        << (plan.result.stats.time_capped
+                ? " (cut by [planner] time_budget: this path depends on the machine's speed, not "
+                  "the seed alone)"
+                : "")
+        << "\n"
         << "  trajectory  " << trajectory.stats.duration << " s, max " << trajectory.stats.max_speed
         << " m/s, solved in " << trajectory.stats.solve_time << " s"
         << (trajectory.stats.binding_limit.limit.empty()
@@ -223,6 +237,9 @@ int FlyInto(const OutputFolder& output, const FlightSetup& setup, const FlyOptio
     for (const ReplanEvent& e : result.replans) {
       table << "; at " << e.t << " s (" << e.trigger << "): " << e.outcome << " in "
             << std::setprecision(1) << 1e3 * e.latency << " ms" << std::setprecision(4);
+      if (e.time_capped) {
+        table << " (cut by [replan] time_budget: not reproducible by seed)";
+      }
     }
   }
   table << "\n  speed       " << std::setprecision(2) << flight.AverageSpeed()

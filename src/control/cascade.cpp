@@ -23,8 +23,8 @@ Vec3 RateFeedForward(const FlatOutput& setpoint, const Quat& q_WB) {
   return Vec3(-h.dot(R.col(1)), h.dot(R.col(0)), setpoint.yaw_rate * z_b.z());
 }
 
-bool CascadeController::Update(double, const State& state, const FlatOutput& setpoint,
-                               ControlCommand* command) {
+ControlStatus CascadeController::Update(double, const State& state, const FlatOutput& setpoint,
+                                        ControlCommand* command) {
   PositionSetpoint target;
   target.p_W = setpoint.p_W;
   target.v_W = setpoint.v_W;
@@ -32,13 +32,13 @@ bool CascadeController::Update(double, const State& state, const FlatOutput& set
   target.yaw = setpoint.yaw;
   if (!state.w_B.allFinite() ||
       !position_.Update(target, state.p_W, state.v_W, state.q_WB, period_, &last_)) {
-    return false;
+    return ControlStatus::NonFinite();
   }
   command->level = CommandLevel::kThrustAttitude;
   command->thrust = last_.thrust;
   command->q_WB = last_.q_WB;
   command->rate_B = RateFeedForward(setpoint, last_.q_WB);
-  return true;
+  return ControlStatus::Ok();
 }
 
 std::vector<std::string> CascadeController::ReportColumns() const {

@@ -20,8 +20,8 @@ class CascadeController : public Controller {
   // parameters.
   CascadeController(const PositionControlParams& params, double period, double mass);
 
-  bool Update(double t, const State& state, const FlatOutput& setpoint,
-              ControlCommand* command) override;
+  ControlStatus Update(double t, const State& state, const FlatOutput& setpoint,
+                       ControlCommand* command) override;
 
   // vx_sp, vy_sp, vz_sp [m/s]: the velocity setpoint after the position loop;
   // ax_sp, ay_sp, az_sp [m/s^2]: the acceleration the velocity loop asks for (tilt-limited).

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/flat_output.h"
@@ -34,15 +35,37 @@ struct ControlCommand {
   Quat q_WB = Quat::Identity();  // attitude, body to world
 };
 
+// What came of one control step: a command, or why there is none. A flight ends at the first
+// step without a command: as non-finite (FlightStatus::kNonFinite) or as the controller's
+// failure (FlightStatus::kControllerFailed, with the message and the detail).
+struct ControlStatus {
+  enum class Code {
+    kOk,
+    kNonFinite,  // an input (the state or the setpoint) was not finite
+    kFailed,     // the controller itself failed: an error in a user's controller
+  };
+  Code code = Code::kOk;
+  std::string message;  // kFailed: what went wrong, and at what time, on one line
+  std::string detail;   // kFailed: more, when there is (a Python controller's traceback)
+
+  static ControlStatus Ok() { return {}; }
+  static ControlStatus NonFinite() { return {Code::kNonFinite, "", ""}; }
+  static ControlStatus Failed(std::string message, std::string detail = "") {
+    return {Code::kFailed, std::move(message), std::move(detail)};
+  }
+  bool ok() const { return code == Code::kOk; }
+  explicit operator bool() const { return ok(); }
+};
+
 class Controller {
  public:
   virtual ~Controller() = default;
 
   // One control step at flight time t [s]: the state (ENU world, FLU body) and the setpoint in,
-  // the command out. Returns false when no usable command can be given (a non-finite input);
-  // the flight then ends as non-finite. Never throws.
-  virtual bool Update(double t, const State& state, const FlatOutput& setpoint,
-                      ControlCommand* command) = 0;
+  // the command out. Never throws: an input that is not finite, or an error of the controller's
+  // own (a user's exception), comes back as the status.
+  virtual ControlStatus Update(double t, const State& state, const FlatOutput& setpoint,
+                               ControlCommand* command) = 0;
 
   // Telemetry columns of the controller's own (names with their unit in the README or the
   // controller's header), and their values after the last Update, in that order.

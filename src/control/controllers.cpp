@@ -39,8 +39,8 @@ class DragFeedForward : public Controller {
  public:
   DragFeedForward(std::unique_ptr<Controller> inner, const DragModel& drag)
       : inner_(std::move(inner)), drag_(drag) {}
-  bool Update(double t, const State& state, const FlatOutput& setpoint,
-              ControlCommand* command) override {
+  ControlStatus Update(double t, const State& state, const FlatOutput& setpoint,
+                       ControlCommand* command) override {
     return inner_->Update(t, state, CompensateDrag(setpoint, drag_), command);
   }
   std::vector<std::string> ReportColumns() const override { return inner_->ReportColumns(); }

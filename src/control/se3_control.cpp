@@ -34,11 +34,11 @@ Se3Controller::Se3Controller(const Se3Params& params, const QuadParams& vehicle)
   params_.Validate();
 }
 
-bool Se3Controller::Update(double, const State& state, const FlatOutput& setpoint,
-                           ControlCommand* command) {
+ControlStatus Se3Controller::Update(double, const State& state, const FlatOutput& setpoint,
+                                    ControlCommand* command) {
   if (!setpoint.AllFinite() || !state.p_W.allFinite() || !state.v_W.allFinite() ||
       !state.q_WB.coeffs().allFinite() || !state.w_B.allFinite()) {
-    return false;
+    return ControlStatus::NonFinite();
   }
   const Mat3 r = state.q_WB.normalized().toRotationMatrix();
   const Vec3 e_x = state.p_W - setpoint.p_W;
@@ -88,7 +88,9 @@ bool Se3Controller::Update(double, const State& state, const FlatOutput& setpoin
   command->moment_B = inertia_.cwiseProduct(alpha) + state.w_B.cross(jw);
   last_e_R_ = e_R;
   last_w_d_ = w_d;
-  return command->moment_B.allFinite() && std::isfinite(command->thrust);
+  return command->moment_B.allFinite() && std::isfinite(command->thrust)
+             ? ControlStatus::Ok()
+             : ControlStatus::NonFinite();
 }
 
 std::vector<std::string> Se3Controller::ReportColumns() const {

@@ -29,8 +29,8 @@ class Se3Controller : public Controller {
  public:
   Se3Controller(const Se3Params& params, const QuadParams& vehicle);
 
-  bool Update(double t, const State& state, const FlatOutput& setpoint,
-              ControlCommand* command) override;
+  ControlStatus Update(double t, const State& state, const FlatOutput& setpoint,
+                       ControlCommand* command) override;
 
   // ex_R, ey_R, ez_R [-]: the attitude error vector e_R of Lee et al.;
   // wx_d, wy_d, wz_d [rad/s]: the desired body rates from the trajectory's jerk.

@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
 
 #include "common/fault_injection.h"
 #include "common/number_format.h"
@@ -45,6 +46,8 @@ const char* ToString(FlightStatus status) {
       return "simulation warning";
     case FlightStatus::kMissedGoal:
       return "missed a goal";
+    case FlightStatus::kControllerFailed:
+      return "controller failed";
   }
   return "?";
 }
@@ -208,9 +211,15 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
 
     // the controller at its rate, the inner loops every step, on what the sensors tell
     const State seen = sensing ? sensing->Estimate() : state;
-    if (control_step && !controller.Update(t, seen, setpoint, &command)) {
-      result.status = FlightStatus::kNonFinite;
-      break;
+    if (control_step) {
+      ControlStatus control = controller.Update(t, seen, setpoint, &command);
+      if (!control.ok()) {
+        const bool failed = control.code == ControlStatus::Code::kFailed;
+        result.status = failed ? FlightStatus::kControllerFailed : FlightStatus::kNonFinite;
+        result.message = std::move(control.message);
+        result.detail = std::move(control.detail);
+        break;
+      }
     }
     if (!inner.Run(command, seen, step, &inner_out)) {
       result.status = FlightStatus::kNonFinite;

@@ -40,6 +40,7 @@ enum class FlightStatus {
   kFlyAway,
   kSimulationWarning,  // MuJoCo warned (an engine reset, a full contact buffer): not trusted
   kMissedGoal,         // at the last goal, but a goal before it was never reached
+  kControllerFailed,   // the controller gave no command (ControlStatus::kFailed): its message
 };
 const char* ToString(FlightStatus status);
 
@@ -70,7 +71,8 @@ struct FlightResult {
   // flight began at the start); the tracking errors count from then
   double takeoff_time = 0.0;
   std::string obstacle;        // the geom hit, for kCollision
-  std::string message;         // MuJoCo's warning, for kSimulationWarning
+  std::string message;         // MuJoCo's warning, or the controller's failure
+  std::string detail;          // kControllerFailed: the controller's detail (a traceback)
   double rms_error = 0.0;      // [m] tracking error from the trajectory's start
   double max_error = 0.0;      // [m]
   double min_clearance = 0.0;  // [m]

@@ -224,6 +224,7 @@ void PlanLeg(const FlightSetup& setup, const CollisionWorld& world, const Vec3& 
         LatticeStats{fallback.stats.nodes, fallback.stats.edges, fallback.stats.build_time};
     fallback.stats.planning_time += outcome->result.stats.planning_time;
     fallback.stats.iterations = outcome->result.stats.iterations;
+    fallback.stats.time_capped |= outcome->result.stats.time_capped;
     fallback.tree = std::move(outcome->result.tree);
     outcome->result = std::move(fallback);
     outcome->planner = "lattice (RRT* found no path)";
@@ -250,6 +251,7 @@ void AppendLeg(PlanOutcome&& leg, PlanOutcome* mission) {
   a.nodes += b.nodes;
   a.planning_time += b.planning_time;
   a.build_time += b.build_time;
+  a.time_capped |= b.time_capped;
   if (a.final_cost >= 0 && b.final_cost >= 0) a.final_cost += b.final_cost;
   if (a.first_cost >= 0 && b.first_cost >= 0) a.first_cost += b.first_cost;
   all.tree.insert(all.tree.end(), next.tree.begin(), next.tree.end());

@@ -58,6 +58,7 @@ void ReplanParams::Validate() const {
   };
   if (!(horizon >= 0 && horizon <= 5)) fail("horizon", horizon);
   if (!(iterations >= 0)) fail("iterations", static_cast<double>(iterations));
+  if (!(search_iterations >= 1)) fail("search_iterations", static_cast<double>(search_iterations));
   if (!(time_budget > 0 && time_budget <= 10)) fail("time_budget", time_budget);
   if (!(max_attempts >= 1)) fail("max_attempts", max_attempts);
 }
@@ -253,9 +254,11 @@ std::optional<Reference> Replanner::Replan(double t, double tr, int goals_reache
     RrtStarParams rrt = rrt_;
     rrt.time_budget = replan_.time_budget;
     rrt.max_iterations = replan_.iterations;
+    rrt.max_search_iterations = replan_.search_iterations;
     rrt.record_tree = false;
     rrt.seed = seed_ + 7919ULL * (events_.size() + 1) + salt;
     const PlanResult leg = PlanRrtStar(from, to, world.free_bounds(), validity, rrt);
+    event.time_capped |= leg.stats.time_capped;
     if (leg.status != PlanStatus::kSolved) return false;
     out->insert(out->end(), leg.path.begin() + 1, leg.path.end());
     return true;

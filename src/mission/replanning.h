@@ -31,13 +31,16 @@ struct SensingParams {
 };
 
 // Replanning in flight: from the reference `horizon` seconds ahead of the vehicle, RRT* per leg
-// (`iterations` after its first solution, so that the same seed replans the same; at most
-// `time_budget` of wall time), then a trajectory that continues the reference's state.
+// to iteration counts (`search_iterations` for a first solution, then `iterations` more), so
+// that the same seed replans the same on any machine under any load; `time_budget` of wall time
+// is only a safety cap, and a search it cuts is reported (ReplanEvent::time_capped). Then a
+// trajectory that continues the reference's state.
 struct ReplanParams {
-  double horizon = 0.3;      // [s]
-  long iterations = 300;     // RRT* iterations after the first solution, per leg
-  double time_budget = 0.1;  // [s] of wall time per leg, at most
-  int max_attempts = 50;     // attempts while braked before the flight gives up
+  double horizon = 0.3;           // [s]
+  long iterations = 300;          // RRT* iterations after the first solution, per leg
+  long search_iterations = 3000;  // RRT* iterations for a first solution, per leg, at most
+  double time_budget = 2.0;       // [s] of wall time per leg: a safety cap, not the budget
+  int max_attempts = 50;          // attempts while braked before the flight gives up
 
   void Validate() const;
 };
@@ -50,6 +53,7 @@ struct ReplanEvent {
   double solve_time = 0.0;      // [s] wall, the trajectory
   double latency = 0.0;         // [s] wall, trigger to the new trajectory ready
   double path_length = 0.0;     // [m] of the new path
+  bool time_capped = false;     // the wall-time cap cut a search: not reproducible by seed
   std::string outcome;          // "replanned", "braking", "no path", ...
   std::vector<Vec3> abandoned;  // the rest of the path given up [m]
   // the trajectory that replaced it, every 0.05 s from where it joins [m] and its speed [m/s]

@@ -54,7 +54,8 @@ JsonObject RunSummary(const FlightSetup& setup, const MissionResult& result,
   AddPoint(&summary, "goal_requested", plan.goal.requested);
   AddPoint(&summary, "goal", plan.goal.used);
   summary.Add("planning_time_s", plan.result.stats.planning_time)
-      .Add("planner_iterations", static_cast<long long>(plan.result.stats.iterations));
+      .Add("planner_iterations", static_cast<long long>(plan.result.stats.iterations))
+      .Add("planning_time_capped", plan.result.stats.time_capped);
   if (plan.result.status == PlanStatus::kPathBlocked) {
     // where a given path is blocked, and by what (a sweep or a script reads it)
     const PlanStats& stats = plan.result.stats;
@@ -141,7 +142,8 @@ JsonObject RunSummary(const FlightSetup& setup, const MissionResult& result,
           .Add("planning_time_s", e.planning_time)
           .Add("solve_time_s", e.solve_time)
           .Add("latency_s", e.latency)
-          .Add("path_length_m", e.path_length);
+          .Add("path_length_m", e.path_length)
+          .Add("time_capped", e.time_capped);
       replans.push_back(r);
     }
     summary.Add("replans", replans);

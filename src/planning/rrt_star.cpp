@@ -113,7 +113,10 @@ class Planner {
       ThrowIfStopRequested([&] {
         return "planning the path (RRT*, " + std::to_string(iterations) + " iterations)";
       });
-      if (elapsed() >= params_.time_budget) return false;
+      if (elapsed() >= params_.time_budget) {
+        result.stats.time_capped = true;
+        return false;
+      }
       if (best_parent_ < 0) {
         return params_.max_search_iterations == 0 || searched < params_.max_search_iterations;
       }

@@ -63,6 +63,9 @@ struct PlanStats {
   double tree_cost = -1.0;                 // [m] the tree's best path at the end
   double final_cost = -1.0;                // [m] after shortcutting and pruning
   double planning_time = 0.0;              // [s] including simplification
+  // the wall-time budget, not an iteration count, ended the search: the result then depends on
+  // the machine's speed and load, not on the seed alone
+  bool time_capped = false;
   // a graph built before the queries (the lattice): its edges and build time [s]
   size_t edges = 0;
   double build_time = 0.0;

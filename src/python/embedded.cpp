@@ -2,9 +2,7 @@
 
 #include <pybind11/embed.h>
 
-#include <cmath>
 #include <memory>
-#include <sstream>
 
 #include "common/error.h"
 #include "python/seams.h"
@@ -23,58 +21,19 @@ void StartInterpreter() {
 
 SourceLocation Where(const std::string& spec) { return {spec.substr(0, spec.rfind(':')), 0}; }
 
-// "RuntimeError: what it said (file.py line 51, in update)": the exception and the innermost
-// frame, on one line.
-std::string Describe(const py::error_already_set& e) {
-  std::string text = py::str(e.type().attr("__name__")).cast<std::string>() + ": " +
-                     py::str(e.value()).cast<std::string>();
-  py::object frame = py::reinterpret_borrow<py::object>(e.trace());
-  if (frame.is_none() || !frame) return text;
-  while (!frame.attr("tb_next").is_none()) frame = frame.attr("tb_next");
-  const py::object code = frame.attr("tb_frame").attr("f_code");
-  const std::string file = py::str(code.attr("co_filename"));
-  return text + " (" + file.substr(file.rfind('/') + 1) + " line " +
-         std::to_string(frame.attr("tb_lineno").cast<int>()) + ", in " +
-         py::str(code.attr("co_name")).cast<std::string>() + ")";
-}
-
-// Runs `f`; any exception out of Python (or of the checks at its edge) becomes InputError, its
-// message prefixed by `during` when that is given.
+// Runs `f`; any exception out of Python (or of the checks at its edge) becomes InputError.
 template <typename F>
-auto AtOption(const std::string& option, const std::string& spec, F&& f,
-              const std::string& during = "") -> decltype(f()) {
+auto AtOption(const std::string& option, const std::string& spec, F&& f) -> decltype(f()) {
   try {
     return f();
   } catch (const InputError&) {
     throw;
   } catch (const py::error_already_set& e) {
-    throw InputError(Where(spec), option, (during.empty() ? "" : during + ": ") + Describe(e));
+    throw InputError(Where(spec), option, python::DescribeError(e));
   } catch (const std::exception& e) {
     throw InputError(Where(spec), option, e.what());
   }
 }
-
-std::string AtTime(const char* call, double t) {
-  std::ostringstream text;
-  text << call << " at t = " << std::round(t * 1e6) / 1e6 << " s";
-  return text.str();
-}
-
-class EmbeddedController : public Controller {
- public:
-  EmbeddedController(std::string spec, std::unique_ptr<Controller> inner)
-      : spec_(std::move(spec)), inner_(std::move(inner)) {}
-  bool Update(double t, const State& state, const FlatOutput& setpoint,
-              ControlCommand* command) override {
-    return AtOption(
-        "--controller", spec_, [&] { return inner_->Update(t, state, setpoint, command); },
-        AtTime("controller.update", t));
-  }
-
- private:
-  std::string spec_;
-  std::unique_ptr<Controller> inner_;
-};
 
 class EmbeddedPlanner : public Planner {
  public:
@@ -121,8 +80,7 @@ void UsePythonModules(const PythonModules& modules, FlightSetup* setup) {
                  [spec, cls, choice](const ControllerConfig&, const QuadParams& vehicle) {
                    return AtOption("--controller", spec, [&]() -> std::unique_ptr<Controller> {
                      const py::object made = cls(python::VehicleDict(vehicle));
-                     return std::make_unique<EmbeddedController>(
-                         spec, std::make_unique<python::PythonController>(made, vehicle, choice));
+                     return std::make_unique<python::PythonController>(made, vehicle, choice);
                    });
                  });
     setup->controller.kind = spec;

@@ -19,9 +19,10 @@ struct PythonModules {
 
 // Starts the interpreter (once), imports each given class, registers it under its spec and
 // points the set-up at it. Throws InputError naming the option, for a file that does not import
-// or a class that is not there. Later, an exception in the user's code (or a command with a
-// wrong key, shape or a non-finite value) leaves the run as an InputError naming the option,
-// the time and the key.
+// or a class that is not there. Later, an exception in a planner's or a trajectory's code
+// leaves the run as an InputError naming the option; a controller's (or a command with a wrong
+// key, shape or a non-finite value) ends the flight as FlightStatus::kControllerFailed, its
+// message naming the time and the key, its detail the traceback (python/seams.h).
 void UsePythonModules(const PythonModules& modules, FlightSetup* setup);
 
 }  // namespace aerobox

@@ -96,7 +96,9 @@ struct FlightRecord {
 // Stands in for the run's controller when its outputs are written afterwards.
 class RecordedController : public Controller {
  public:
-  bool Update(double, const State&, const FlatOutput&, ControlCommand*) override { return false; }
+  ControlStatus Update(double, const State&, const FlatOutput&, ControlCommand*) override {
+    return ControlStatus::Failed("a recorded run has no controller to call");
+  }
 };
 
 class SimulatorCore {
@@ -174,6 +176,7 @@ class SimulatorCore {
     if (t_final > 0) params.settle_time = std::max(0.0, t_final - reference.duration);
     // the controller: a built-in by name, or the user's object
     std::unique_ptr<Controller> made;
+    const PythonController* users = nullptr;  // the user's controller, when it is one
     ControllerConfig config = setup_->controller;
     config.rate = control_rate;
     if (py::isinstance<py::str>(controller)) {
@@ -183,8 +186,10 @@ class SimulatorCore {
         return MakeController(config, setup_->vehicle);
       });
     } else {
-      made = std::make_unique<PythonController>(controller, setup_->vehicle,
-                                                ParseCommandChoice(choice));
+      auto user = std::make_unique<PythonController>(controller, setup_->vehicle,
+                                                     ParseCommandChoice(choice));
+      users = user.get();
+      made = std::move(user);
       config.kind =
           "python:" + std::string(py::str(py::type::handle_of(controller).attr("__name__")));
     }
@@ -205,6 +210,8 @@ class SimulatorCore {
     loop.telemetry = [&record](const TelemetrySample& s) { record->samples.push_back(s); };
     const auto begin = std::chrono::steady_clock::now();
     record->flight = Checked([&] { return FlyTrajectory(reference, params, loop, &sim_); });
+    // the user's exception (or a command that cannot be flown) raised in Python, as it was
+    if (users != nullptr) users->RethrowIfFailed();
     record->wall_time =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
 

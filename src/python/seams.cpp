@@ -445,21 +445,59 @@ PythonController::PythonController(py::object controller, const QuadParams& vehi
   update_ = controller.attr("update");
 }
 
-bool PythonController::Update(double t, const State& state, const FlatOutput& setpoint,
-                              ControlCommand* command) {
-  py::object answer;
+std::string DescribeError(const py::error_already_set& error) {
+  std::string text = py::str(error.type().attr("__name__")).cast<std::string>() + ": " +
+                     py::str(error.value()).cast<std::string>();
+  py::object frame = py::reinterpret_borrow<py::object>(error.trace());
+  if (frame.is_none() || !frame) return text;
+  while (!frame.attr("tb_next").is_none()) frame = frame.attr("tb_next");
+  const py::object code = frame.attr("tb_frame").attr("f_code");
+  const std::string file = py::str(code.attr("co_filename"));
+  return text + " (" + file.substr(file.rfind('/') + 1) + " line " +
+         std::to_string(frame.attr("tb_lineno").cast<int>()) + ", in " +
+         py::str(code.attr("co_name")).cast<std::string>() + ")";
+}
+
+std::string FormatTraceback(const py::error_already_set& error) {
   try {
-    answer = update_(t, StateDict(state, last_thrusts_, vehicle_), FlatDict(setpoint));
+    const py::object lines =
+        py::module_::import("traceback")
+            .attr("format_exception")(error.type(), error.value(), error.trace());
+    std::string text = py::str("").attr("join")(lines).cast<std::string>();
+    while (!text.empty() && text.back() == '\n') text.pop_back();
+    return text;
+  } catch (const std::exception&) {
+    return "";
+  }
+}
+
+ControlStatus PythonController::Update(double t, const State& state, const FlatOutput& setpoint,
+                                       ControlCommand* command) {
+  const std::string who = "controller.update";
+  try {
+    const py::object answer =
+        update_(t, StateDict(state, last_thrusts_, vehicle_), FlatDict(setpoint));
+    *command = CommandFromDict(answer, choice_, vehicle_, t, who);
   } catch (py::error_already_set& e) {
+    ControlStatus failed =
+        ControlStatus::Failed(At(who, t) + ": " + DescribeError(e), FormatTraceback(e));
     // the user's own exception, with where it happened (Python 3.11's notes)
     if (py::hasattr(e.value(), "add_note")) {
-      e.value().attr("add_note")("aerobox: raised by controller.update " + At("", t).substr(1));
+      e.value().attr("add_note")("aerobox: raised by " + At(who, t));
     }
-    throw;
+    error_ = std::current_exception();
+    return failed;
+  } catch (const std::exception& e) {
+    // a command that cannot be flown: the message names the call, the time and the key
+    error_ = std::current_exception();
+    return ControlStatus::Failed(e.what());
   }
-  *command = CommandFromDict(answer, choice_, vehicle_, t, "controller.update");
   if (command->level == CommandLevel::kRotorThrusts) last_thrusts_ = command->rotor_thrusts;
-  return true;
+  return ControlStatus::Ok();
+}
+
+void PythonController::RethrowIfFailed() const {
+  if (error_) std::rethrow_exception(error_);
 }
 
 Reference PythonReference(py::object trajectory, double t_final, bool* duration_known) {

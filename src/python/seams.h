@@ -7,6 +7,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -67,20 +68,33 @@ py::dict VehicleDict(const QuadParams& vehicle);
 // blocks [{extents, color}] (what a MEAM620 planner reads).
 py::dict WorldDict(const Map& map);
 
-// A Python controller (update(t, state, flat_output) -> dict) in the Controller seam. A Python
-// exception, or a command that is not usable, is thrown out of Update (py::error_already_set
-// with a note naming the time, or py::value_error): the run ends with it.
+// "RuntimeError: what it said (file.py line 51, in update)": a Python exception and its
+// innermost frame, on one line.
+std::string DescribeError(const py::error_already_set& error);
+// The exception's whole traceback as Python prints it ("Traceback (most recent call last): ..."),
+// without the final newline; empty when it cannot be formatted.
+std::string FormatTraceback(const py::error_already_set& error);
+
+// A Python controller (update(t, state, flat_output) -> dict) in the Controller seam. Update
+// never throws: a Python exception, or a command that is not usable (a missing key, a wrong
+// shape, a non-finite value), comes back as ControlStatus::kFailed, its message naming the
+// time and where it was raised, its detail the user's traceback. The exception itself is kept
+// (with a note naming the time): RethrowIfFailed raises it again, traceback and all, for a
+// caller in Python.
 class PythonController : public Controller {
  public:
   PythonController(py::object controller, const QuadParams& vehicle, CommandChoice choice);
-  bool Update(double t, const State& state, const FlatOutput& setpoint,
-              ControlCommand* command) override;
+  ControlStatus Update(double t, const State& state, const FlatOutput& setpoint,
+                       ControlCommand* command) override;
+  // Throws what made an Update fail (the user's exception, or py::value_error); else nothing.
+  void RethrowIfFailed() const;
 
  private:
   py::object update_;
   QuadParams vehicle_;
   CommandChoice choice_;
   Vec4 last_thrusts_ = Vec4::Zero();
+  std::exception_ptr error_;
 };
 
 // A Python trajectory (update(t) -> flat-output dict; `duration` or `t_final` [s] when it has

@@ -713,13 +713,16 @@ void ReadReplan(const toml::table& table, const std::string& file, ReplanParams*
       replan->horizon = Number(node, file, field, 0, 5);
     } else if (name == "iterations") {
       replan->iterations = static_cast<long>(Number(node, file, field, 0, 1e7));
+    } else if (name == "search_iterations") {
+      replan->search_iterations = static_cast<long>(Number(node, file, field, 1, 1e7));
     } else if (name == "time_budget") {
       replan->time_budget = Number(node, file, field, 1e-3, 10);
     } else if (name == "max_attempts") {
       replan->max_attempts = static_cast<int>(Number(node, file, field, 1, 1e6));
     } else {
       throw InputError({file, LineOf(node)}, field,
-                       "unknown key (expected horizon, iterations, time_budget or max_attempts)");
+                       "unknown key (expected horizon, iterations, search_iterations, "
+                       "time_budget or max_attempts)");
     }
   }
 }

@@ -67,29 +67,31 @@ class CascadeAtLevel : public Controller {
     last_.thrust = vehicle.mass * kGravity;
   }
 
-  bool Update(double, const State& state, const FlatOutput& setpoint,
-              ControlCommand* command) override {
+  ControlStatus Update(double, const State& state, const FlatOutput& setpoint,
+                       ControlCommand* command) override {
     if (calls_++ % 4 == 0) {
       PositionSetpoint target{setpoint.p_W, setpoint.v_W, setpoint.a_W, setpoint.yaw};
-      if (!position_.Update(target, state.p_W, state.v_W, state.q_WB, 0.004, &last_)) return false;
+      if (!position_.Update(target, state.p_W, state.v_W, state.q_WB, 0.004, &last_))
+        return ControlStatus::NonFinite();
       feed_forward_ = RateFeedForward(setpoint, last_.q_WB);
     }
     command->level = level_;
     command->thrust = last_.thrust;
     command->q_WB = last_.q_WB;
     command->rate_B = feed_forward_;
-    if (level_ == CommandLevel::kThrustAttitude) return true;
-    if (!attitude_.Update(state.q_WB, last_.q_WB, &command->rate_B)) return false;
+    if (level_ == CommandLevel::kThrustAttitude) return ControlStatus::Ok();
+    if (!attitude_.Update(state.q_WB, last_.q_WB, &command->rate_B))
+      return ControlStatus::NonFinite();
     command->rate_B += feed_forward_;
-    if (level_ == CommandLevel::kThrustRates) return true;
+    if (level_ == CommandLevel::kThrustRates) return ControlStatus::Ok();
     if (!rate_.Update(command->rate_B, state.w_B, 0.001, saturated_, &command->moment_B)) {
-      return false;
+      return ControlStatus::NonFinite();
     }
     MixerOutput mixed;
-    if (!mixer_.Mix(last_.thrust, command->moment_B, &mixed)) return false;
+    if (!mixer_.Mix(last_.thrust, command->moment_B, &mixed)) return ControlStatus::NonFinite();
     saturated_ = mixed.saturated();
     command->rotor_thrusts = mixed.thrusts;
-    return true;
+    return ControlStatus::Ok();
   }
 
  private:
@@ -109,15 +111,16 @@ class CascadeAtLevel : public Controller {
 class PdController : public Controller {
  public:
   explicit PdController(double mass) : mass_(mass) {}
-  bool Update(double, const State& state, const FlatOutput& sp, ControlCommand* command) override {
+  ControlStatus Update(double, const State& state, const FlatOutput& sp,
+                       ControlCommand* command) override {
     const Vec3 a =
         6.0 * (sp.p_W - state.p_W) + 4.0 * (sp.v_W - state.v_W) + sp.a_W + Vec3(0, 0, kGravity);
-    if (!a.allFinite() || !state.q_WB.coeffs().allFinite()) return false;
+    if (!a.allFinite() || !state.q_WB.coeffs().allFinite()) return ControlStatus::NonFinite();
     ++updates_;
     command->level = CommandLevel::kThrustAttitude;
     command->thrust = mass_ * a.dot(state.q_WB * Vec3::UnitZ());
     command->q_WB = Quat::FromTwoVectors(Vec3::UnitZ(), a.normalized());
-    return true;
+    return ControlStatus::Ok();
   }
   std::vector<std::string> ReportColumns() const override { return {"pd_updates"}; }
   void Report(std::vector<double>* values) const override {

@@ -82,7 +82,10 @@ class PythonInTheCommand(unittest.TestCase):
 
     def test_failures_exit_2_name_the_time_and_leave_nothing(self):
         cases = {
-            "Raising": ["--controller", "the user's controller broke", "t = 0.3 s"],
+            # the user's traceback, then the message naming the option, the time and the line
+            "Raising": ["--controller", "the user's controller broke", "t = 0.3 s",
+                        "Traceback (most recent call last)",
+                        'raise RuntimeError("the user\'s controller broke")'],
             "ReturnsNaN": ["--controller", "'cmd_motor_thrusts' is not finite", "t = 0.3 s"],
         }
         for name, expected in cases.items():
