@@ -81,7 +81,7 @@ void SpeedTable(const std::string& scenes, const std::string& maps, std::ostream
 
 int RunBench(const std::string& sections, const std::string& scenes, const std::string& maps,
              const std::string& city, int seeds, double seconds, const std::string& robustness_csv,
-             std::ostream& out, std::ostream& err) {
+             const BenchSize& size, std::ostream& out, std::ostream& err) {
   const auto wanted = [&sections](const char* name) {
     ThrowIfStopRequested("starting the next section (the tables above are complete)");
     return sections == "all" ||
@@ -89,7 +89,7 @@ int RunBench(const std::string& sections, const std::string& scenes, const std::
   };
   if (wanted("trajectory")) {
     out << "## Minimum snap: Ipopt against the closed-form solve (medians of 5 repetitions)\n\n";
-    CompareMinSnapSolvers(out, err);
+    CompareMinSnapSolvers(out, err, size);
     out << "\n";
   }
   if (wanted("render")) {
@@ -97,14 +97,14 @@ int RunBench(const std::string& sections, const std::string& scenes, const std::
         (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
     out << "## The video path against bare rendering on the window scene (60 frames, medians of "
            "3)\n\n";
-    CompareVideoPath(window, out, err);
+    CompareVideoPath(window, out, err, size);
     out << "\n";
   }
   if (wanted("flight")) {
     const std::string window =
         (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
     out << "## Closed loop against bare mj_step on the window scene (medians of 5 repetitions)\n\n";
-    CompareClosedLoop(window, out, err);
+    CompareClosedLoop(window, out, err, size);
     out << "\n";
   }
   if (wanted("speed")) {
@@ -116,7 +116,7 @@ int RunBench(const std::string& sections, const std::string& scenes, const std::
     out << "## A Python controller against the C++ ones (the aerobox package)\n\n" << std::flush;
     const std::string window =
         (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
-    RunPythonBenchmark(window, out);
+    RunPythonBenchmark(window, out, size);
     out << "\n";
   }
   if (wanted("robustness")) {
@@ -158,7 +158,7 @@ int RunBench(const std::string& sections, const std::string& scenes, const std::
     } else {
       const std::string window =
           (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
-      CityBenchmark(city, window, 50, out, err);
+      CityBenchmark(city, window, size.Count(50, 2), out, err, size);
       out << "\n";
     }
   }
@@ -211,11 +211,23 @@ int main(int argc, char** argv) {
   app.add_option("--seconds", bench_seconds, "time budget of each run [s]")
       ->capture_default_str()
       ->check(CLI::Range(0.2, 60.0));
+  aerobox::BenchSize size;
+  app.add_flag("--smoke", size.smoke,
+               "a smoke run: every section at its smallest (one repetition; unless given, "
+               "--maps window --seeds 1 --seconds 0.2); shows that each section runs, its "
+               "numbers mean nothing");
 
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
     return app.exit(error) == 0 ? 0 : 2;
+  }
+  if (size.smoke) {
+    if (app.count("--maps") == 0) bench_maps = "window";
+    if (app.count("--seeds") == 0) bench_seeds = 1;
+    if (app.count("--seconds") == 0) bench_seconds = 0.2;
+    std::cout << "(a smoke run: one repetition, the smallest sizes; it shows that every section "
+                 "runs, and its numbers mean nothing)\n\n";
   }
   // Ctrl-C: every section stops at its next check, exit 130 (outputs/interrupt.h)
   aerobox::DisableShaderDiskCache();  // its thread would hold up an interrupted process's end
@@ -230,7 +242,7 @@ int main(int argc, char** argv) {
       }
     }
     return aerobox::RunBench(bench_sections, bench_scenes, bench_maps, bench_city, bench_seeds,
-                             bench_seconds, robustness_csv, std::cout, std::cerr);
+                             bench_seconds, robustness_csv, size, std::cout, std::cerr);
   } catch (const aerobox::Interrupted& stop) {
     std::cout << std::flush;
     std::cerr << "\naerobox bench: interrupted while " << stop.during()

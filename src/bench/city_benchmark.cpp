@@ -24,27 +24,28 @@ double Seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
-// Median over kRepetitions of mj_step's rate [steps/s] with the vehicle hovering at `at`.
-double StepsPerSecond(const std::string& xml, const Vec3& at) {
+// Median over `repetitions` of mj_step's rate [steps/s] with the vehicle hovering at `at`.
+double StepsPerSecond(const std::string& xml, const Vec3& at, int repetitions) {
   Simulation sim = Simulation::FromXml(xml, "bench");
   const QuadParams vehicle;
   const Vec4 hover = Vec4::Constant(vehicle.HoverThrustPerRotor());
   std::vector<double> rates;
-  for (int r = 0; r < kRepetitions; ++r) {
+  for (int r = 0; r < repetitions; ++r) {
     sim.SetVehicleState(State{at, Vec3::Zero(), Quat::Identity(), Vec3::Zero()});
     sim.SetRotorThrusts(hover);
     const auto begin = std::chrono::steady_clock::now();
     for (int i = 0; i < kSteps; ++i) sim.Step(hover);
     rates.push_back(kSteps / Seconds(begin));
   }
-  std::nth_element(rates.begin(), rates.begin() + kRepetitions / 2, rates.end());
-  return rates[kRepetitions / 2];
+  std::nth_element(rates.begin(), rates.begin() + repetitions / 2, rates.end());
+  return rates[repetitions / 2];
 }
 
 }  // namespace
 
 void CityBenchmark(const std::string& city, const std::string& window, int queries,
-                   std::ostream& out, std::ostream& progress) {
+                   std::ostream& out, std::ostream& progress, const BenchSize& size) {
+  const int repetitions = size.Repetitions(kRepetitions);
   FlightSetup setup = LoadFlightSetup(city, {});
   setup.planning.trajectory.max_speed = 8.0;  // a Tello's top speed
   setup.planning.trajectory.max_accel = 4.0;
@@ -89,14 +90,15 @@ void CityBenchmark(const std::string& city, const std::string& window, int queri
   // keeps it (the buildings within 25 m of the trajectory)
   progress << "\rtiming MuJoCo's steps ...                 " << std::flush;
   const FlightSetup window_setup = LoadFlightSetup(window, {});
-  const double window_rate = StepsPerSecond(SceneMjcfFor(window_setup), window_setup.start);
-  const double city_rate = StepsPerSecond(SceneMjcfFor(setup), longest.front());
+  const double window_rate =
+      StepsPerSecond(SceneMjcfFor(window_setup), window_setup.start, repetitions);
+  const double city_rate = StepsPerSecond(SceneMjcfFor(setup), longest.front(), repetitions);
   std::vector<Vec3> route;
   for (double t = 0; t <= trajectory.trajectory.duration(); t += 0.1)
     route.push_back(trajectory.trajectory.Evaluate3(t, kPosition));
   const std::vector<bool> keep = RouteBoxes(setup.map, route, kRouteMargin);
   const long kept = std::count(keep.begin(), keep.end(), true);
-  const double route_rate = StepsPerSecond(SceneMjcfFor(setup, keep), longest.front());
+  const double route_rate = StepsPerSecond(SceneMjcfFor(setup, keep), longest.front(), repetitions);
   progress << "\r" << std::string(50, ' ') << "\r" << std::flush;
 
   const LatticeStats& lattice = planner.stats();

@@ -29,7 +29,8 @@ void RecordControls(const mjModel* m, mjData* d) {
 
 }  // namespace
 
-void CompareClosedLoop(const std::string& scenario, std::ostream& out, std::ostream& progress) {
+void CompareClosedLoop(const std::string& scenario, std::ostream& out, std::ostream& progress,
+                       const BenchSize& size) {
   const FlightSetup setup = LoadFlightSetup(scenario, {});
   const PlanOutcome plan = PlanFlight(setup);
   if (!plan.trajectory || plan.trajectory->status != TrajectoryStatus::kSolved) {
@@ -40,9 +41,11 @@ void CompareClosedLoop(const std::string& scenario, std::ostream& out, std::ostr
   const QuadParams& vehicle = setup.vehicle;
   const Reference full = ReferenceOf(plan.trajectory->trajectory);
   const CollisionWorld world(setup.map, CollisionParams{vehicle.collision_size, 0.0});
+  // telemetry.csv's columns for the controller that flies (the cascade reports its own)
+  const TelemetrySchema schema(*MakeController(setup.controller, vehicle), TelemetryExtras());
 
   // the trajectory in 2 s windows, each flown from its own start state
-  const int windows = std::max(1, static_cast<int>(full.duration / kWindow));
+  const int windows = size.Count(std::max(1, static_cast<int>(full.duration / kWindow)), 1);
   const auto window_reference = [&full](int w) {
     const double t0 = kWindow * w;
     Reference slice;
@@ -68,7 +71,7 @@ void CompareClosedLoop(const std::string& scenario, std::ostream& out, std::ostr
     if (with_clearance) clearance = [&world](const Vec3& p) { return world.Clearance(p); };
     std::function<void(const TelemetrySample&)> sink;
     if (with_telemetry) {
-      sink = [telemetry](const TelemetrySample& s) { AddTelemetryRow(s, telemetry); };
+      sink = [&schema, telemetry](const TelemetrySample& s) { schema.AddRow(s, telemetry); };
     }
     return FlyTrajectory(window_reference(w), params, vehicle, setup.controller, clearance, sink,
                          sim);
@@ -79,7 +82,7 @@ void CompareClosedLoop(const std::string& scenario, std::ostream& out, std::ostr
   std::vector<std::vector<std::vector<double>>> controls(windows);
   for (int w = 0; w < windows; ++w) {
     const std::unique_ptr<Simulation> sim = start_window(w);
-    CsvTable telemetry = TelemetryTable();
+    CsvTable telemetry = schema.Table();
     recorded_controls = &controls[w];
     mjcb_control = RecordControls;
     fly_window(w, true, true, sim.get(), &telemetry);
@@ -91,22 +94,21 @@ void CompareClosedLoop(const std::string& scenario, std::ostream& out, std::ostr
 
   // each iteration flies (or replays) every window once
   const auto register_loop = [&](const char* name, auto run_window) {
-    benchmark::RegisterBenchmark(name,
-                                 [&, run_window](benchmark::State& state) {
-                                   for (auto _ : state) {
-                                     for (int w = 0; w < windows; ++w) {
-                                       state.PauseTiming();
-                                       std::unique_ptr<Simulation> sim = start_window(w);
-                                       CsvTable telemetry = TelemetryTable();
-                                       state.ResumeTiming();
-                                       run_window(w, sim.get(), &telemetry);
-                                       benchmark::DoNotOptimize(telemetry.rows());
-                                     }
-                                   }
-                                 })
-        ->Unit(benchmark::kSecond)
-        ->Repetitions(5)
-        ->ReportAggregatesOnly(true);
+    Sized(benchmark::RegisterBenchmark(name,
+                                       [&, run_window](benchmark::State& state) {
+                                         for (auto _ : state) {
+                                           for (int w = 0; w < windows; ++w) {
+                                             state.PauseTiming();
+                                             std::unique_ptr<Simulation> sim = start_window(w);
+                                             CsvTable telemetry = schema.Table();
+                                             state.ResumeTiming();
+                                             run_window(w, sim.get(), &telemetry);
+                                             benchmark::DoNotOptimize(telemetry.rows());
+                                           }
+                                         }
+                                       })
+              ->Unit(benchmark::kSecond),
+          size, 5);
   };
   register_loop("bare", [&](int w, Simulation* sim, CsvTable*) {
     const mjModel* m = sim->model();

@@ -5,9 +5,13 @@
 #include <ostream>
 #include <string>
 
+#include "bench/benchmark_medians.h"
+
 namespace aerobox {
 
 // `scenario`: the scene to step (its trajectory is flown). Prints a markdown table.
-void CompareClosedLoop(const std::string& scenario, std::ostream& out, std::ostream& progress);
+// A smoke run flies one window once.
+void CompareClosedLoop(const std::string& scenario, std::ostream& out, std::ostream& progress,
+                       const BenchSize& size);
 
 }  // namespace aerobox

@@ -5,9 +5,13 @@
 #include <ostream>
 #include <string>
 
+#include "bench/benchmark_medians.h"
+
 namespace aerobox {
 
 // Throws std::runtime_error when python3 cannot be started or the script fails.
-void RunPythonBenchmark(const std::string& window_scenario, std::ostream& out);
+// A smoke run flies each controller once, at 100 Hz only.
+void RunPythonBenchmark(const std::string& window_scenario, std::ostream& out,
+                        const BenchSize& size);
 
 }  // namespace aerobox

@@ -5,7 +5,8 @@ SE(3) controller (the tests' own, tests/python/se3_controller.py) at 100 and 500
 Python object that only forwards to the built-in cascade (the price of crossing into Python and
 back, per call). Prints one Markdown table: control steps per wall second, real-time factor
 (flight time / wall time), and the cost of one Python call against the same call in C++.
-Run by aerobox-bench with PYTHONPATH set to the build's package; argv: scenario, tests folder.
+Run by aerobox-bench with PYTHONPATH set to the build's package; argv: scenario, tests folder,
+and --smoke for one flight per controller at 100 Hz (aerobox bench --smoke).
 """
 
 import statistics
@@ -15,7 +16,8 @@ import time
 import aerobox
 
 
-def main(scenario_path, tests_folder, repetitions=3):
+def main(scenario_path, tests_folder, smoke=False):
+    repetitions = 1 if smoke else 3
     sys.path.insert(0, tests_folder)
     from se3_controller import SE3Control
 
@@ -44,7 +46,7 @@ def main(scenario_path, tests_folder, repetitions=3):
 
     rows = []
     native = {}
-    for rate in (100, 500):
+    for rate in (100,) if smoke else (100, 500):
         for name, controller, command in (
                 ("C++ cascade", "cascade", "auto"),
                 ("C++ SE(3)", "se3", "auto"),
@@ -67,4 +69,4 @@ def main(scenario_path, tests_folder, repetitions=3):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1], sys.argv[2])
+    main(sys.argv[1], sys.argv[2], smoke=sys.argv[3:] == ["--smoke"])

@@ -20,7 +20,9 @@ constexpr int kFrames = 60;
 
 }  // namespace
 
-void CompareVideoPath(const std::string& scenario, std::ostream& out, std::ostream& progress) {
+void CompareVideoPath(const std::string& scenario, std::ostream& out, std::ostream& progress,
+                      const BenchSize& size) {
+  const int frames = size.Count(kFrames, 4);
   const FlightSetup setup = LoadFlightSetup(scenario, {});
   const std::string xml = SceneMjcfFor(setup);
   const std::string video = (std::filesystem::temp_directory_path() /
@@ -38,7 +40,7 @@ void CompareVideoPath(const std::string& scenario, std::ostream& out, std::ostre
                         {1280, 720, Quality::kPretty, "1280x720 pretty"}};
   for (const Case& c : cases) {
     // the vehicle moves along +y through the frames, seen by the chase camera
-    const auto render = [xml, c, video](benchmark::State& state, bool encode) {
+    const auto render = [xml, c, video, frames](benchmark::State& state, bool encode) {
       Simulation sim = Simulation::FromXml(xml, "bench");
       Renderer renderer(&sim, RenderSettings(c.width, c.height, c.quality));
       const State start = sim.VehicleState();
@@ -48,7 +50,7 @@ void CompareVideoPath(const std::string& scenario, std::ostream& out, std::ostre
         std::unique_ptr<VideoEncoder> encoder;
         if (encode) encoder = std::make_unique<VideoEncoder>(video, c.width, c.height, 30);
         state.ResumeTiming();
-        for (int i = 0; i < kFrames; ++i) {
+        for (int i = 0; i < frames; ++i) {
           State s = start;
           s.p_W.y() += 0.05 * i;
           sim.SetVehicleState(s);
@@ -62,13 +64,13 @@ void CompareVideoPath(const std::string& scenario, std::ostream& out, std::ostre
                                  [render](benchmark::State& s) { render(s, false); })
         ->Unit(benchmark::kSecond)
         ->Iterations(1)
-        ->Repetitions(3)
+        ->Repetitions(size.Repetitions(3))
         ->ReportAggregatesOnly(true);
     benchmark::RegisterBenchmark((std::string("video/") + c.name).c_str(),
                                  [render](benchmark::State& s) { render(s, true); })
         ->Unit(benchmark::kSecond)
         ->Iterations(1)
-        ->Repetitions(3)
+        ->Repetitions(size.Repetitions(3))
         ->ReportAggregatesOnly(true);
   }
   progress << "timing the video path ..." << std::flush;
@@ -80,8 +82,8 @@ void CompareVideoPath(const std::string& scenario, std::ostream& out, std::ostre
       << "|---|---|---|---|\n"
       << std::fixed;
   for (const Case& c : cases) {
-    const double bare = kFrames / medians.at(std::string("bare/") + c.name);
-    const double full = kFrames / medians.at(std::string("video/") + c.name);
+    const double bare = frames / medians.at(std::string("bare/") + c.name);
+    const double full = frames / medians.at(std::string("video/") + c.name);
     out << "| " << c.name << " | " << std::setprecision(1) << bare << " | " << full << " | "
         << std::setprecision(2) << full / bare << " |\n";
   }

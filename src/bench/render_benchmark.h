@@ -5,8 +5,12 @@
 #include <ostream>
 #include <string>
 
+#include "bench/benchmark_medians.h"
+
 namespace aerobox {
 
-void CompareVideoPath(const std::string& scenario, std::ostream& out, std::ostream& progress);
+// A smoke run renders 4 frames once per case.
+void CompareVideoPath(const std::string& scenario, std::ostream& out, std::ostream& progress,
+                      const BenchSize& size);
 
 }  // namespace aerobox

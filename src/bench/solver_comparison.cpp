@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <map>
 #include <random>
+#include <vector>
 
 #include "bench/benchmark_medians.h"
 #include "trajectory/min_snap.h"
@@ -44,8 +45,9 @@ MinSnapProblem RandomProblem(int segments, bool corridors) {
 
 }  // namespace
 
-void CompareMinSnapSolvers(std::ostream& out, std::ostream& progress) {
-  const int sizes[] = {5, 10, 20, 50, 100, 200};
+void CompareMinSnapSolvers(std::ostream& out, std::ostream& progress, const BenchSize& size) {
+  std::vector<int> sizes = {5, 10, 20, 50, 100, 200};
+  if (size.smoke) sizes = {5, 10};
   std::map<int, std::string> infeasible;
   for (const int n : sizes) {
     const MinSnapProblem plain = RandomProblem(n, false);
@@ -53,14 +55,12 @@ void CompareMinSnapSolvers(std::ostream& out, std::ostream& progress) {
     const MinSnapSolution check = SolveMinSnapIpopt(boxed);
     if (check.status != SolveStatus::kSolved) infeasible[n] = check.message;
     const auto add = [&](const std::string& name, auto solve) {
-      benchmark::RegisterBenchmark(name.c_str(),
-                                   [solve](benchmark::State& state) {
-                                     for (auto _ : state) benchmark::DoNotOptimize(solve());
-                                   })
-          ->Unit(benchmark::kMillisecond)
-          ->MinTime(0.2)
-          ->Repetitions(5)
-          ->ReportAggregatesOnly(true);
+      Sized(benchmark::RegisterBenchmark(name.c_str(),
+                                         [solve](benchmark::State& state) {
+                                           for (auto _ : state) benchmark::DoNotOptimize(solve());
+                                         })
+                ->Unit(benchmark::kMillisecond),
+            size, 5, 0.2);
     };
     add("closed/" + std::to_string(n), [plain] { return SolveMinSnapClosedForm(plain); });
     add("ipopt/" + std::to_string(n), [plain] { return SolveMinSnapIpopt(plain); });

@@ -4,9 +4,12 @@
 
 #include <ostream>
 
+#include "bench/benchmark_medians.h"
+
 namespace aerobox {
 
-// Prints a markdown table for 5, 10, 20 and 50 segments; progress goes to `progress`.
-void CompareMinSnapSolvers(std::ostream& out, std::ostream& progress);
+// Prints a markdown table for 5 to 200 segments (5 and 10 in a smoke run); progress goes to
+// `progress`.
+void CompareMinSnapSolvers(std::ostream& out, std::ostream& progress, const BenchSize& size);
 
 }  // namespace aerobox

@@ -1,6 +1,8 @@
 #include "mission/telemetry_table.h"
 
 #include <cmath>
+#include <stdexcept>
+#include <utility>
 
 namespace aerobox {
 namespace {
@@ -16,15 +18,19 @@ TelemetryExtras TelemetryExtrasFor(const FlightSetup& setup) {
           setup.HasUnknown()};
 }
 
-CsvTable TelemetryTable(const std::vector<std::string>& controller_columns,
-                        const TelemetryExtras& extras) {
-  std::vector<std::string> columns = {
-      "t",     "x",      "y",      "z",       "vx",         "vy",     "vz",     "qw",
-      "qx",    "qy",     "qz",     "wx",      "wy",         "wz",     "x_des",  "y_des",
-      "z_des", "vx_des", "vy_des", "vz_des",  "ax_des",     "ay_des", "az_des", "f1",
-      "f2",    "f3",     "f4",     "pos_err", "thrust_cmd", "wx_sp",  "wy_sp",  "wz_sp",
-      "tau_x", "tau_y",  "tau_z",  "f1_cmd",  "f2_cmd",     "f3_cmd", "f4_cmd", "clearance"};
-  columns.insert(columns.end(), controller_columns.begin(), controller_columns.end());
+TelemetrySchema::TelemetrySchema(const Controller& controller, const TelemetryExtras& extras)
+    : TelemetrySchema(controller.ReportColumns(), extras) {}
+
+TelemetrySchema::TelemetrySchema(std::vector<std::string> controller_columns,
+                                 const TelemetryExtras& extras)
+    : controller_columns_(std::move(controller_columns)), extras_(extras) {
+  std::vector<std::string>& columns = columns_;
+  columns = {"t",     "x",      "y",      "z",       "vx",         "vy",     "vz",     "qw",
+             "qx",    "qy",     "qz",     "wx",      "wy",         "wz",     "x_des",  "y_des",
+             "z_des", "vx_des", "vy_des", "vz_des",  "ax_des",     "ay_des", "az_des", "f1",
+             "f2",    "f3",     "f4",     "pos_err", "thrust_cmd", "wx_sp",  "wy_sp",  "wz_sp",
+             "tau_x", "tau_y",  "tau_z",  "f1_cmd",  "f2_cmd",     "f3_cmd", "f4_cmd", "clearance"};
+  columns.insert(columns.end(), controller_columns_.begin(), controller_columns_.end());
   if (extras.goals) columns.push_back("goal_index");
   if (extras.replans) columns.push_back("replans");
   if (extras.air) {
@@ -37,14 +43,20 @@ CsvTable TelemetryTable(const std::vector<std::string>& controller_columns,
          "est_qy", "est_qz", "est_err", "est_att_err", "est_nees", "imu_gx", "imu_gy", "imu_gz",
          "imu_ax", "imu_ay", "imu_az",  "meas_x",      "meas_y",   "meas_z"});
   }
-  return CsvTable(columns);
 }
 
-void AddTelemetryRow(const TelemetrySample& s, CsvTable* table, const TelemetryExtras& extras) {
-  const int controller = static_cast<int>(s.report.size());
-  const int size = kFixedColumns + controller + (extras.goals ? 1 : 0) + (extras.replans ? 1 : 0) +
-                   (extras.air ? kAirColumns : 0) + (extras.sensors ? kSensorColumns : 0);
-  Eigen::VectorXd row(size);
+void TelemetrySchema::AddRow(const TelemetrySample& s, CsvTable* table) const {
+  const int controller = static_cast<int>(controller_columns_.size());
+  if (s.report.size() != controller_columns_.size()) {
+    std::string names;
+    for (const std::string& name : controller_columns_) names += " " + name;
+    throw std::logic_error("telemetry: the controller reported " + std::to_string(s.report.size()) +
+                           " values for the " + std::to_string(controller) +
+                           " columns of the table's controller (" +
+                           (names.empty() ? " none" : names) + " )");
+  }
+  const TelemetryExtras& extras = extras_;
+  Eigen::VectorXd row(static_cast<Eigen::Index>(columns_.size()));
   const Quat& q = s.state.q_WB;
   row.head<kFixedColumns>() << s.t, s.state.p_W, s.state.v_W, q.w(), q.x(), q.y(), q.z(),
       s.state.w_B, s.setpoint.p_W, s.setpoint.v_W, s.setpoint.a_W, s.rotor_thrusts,

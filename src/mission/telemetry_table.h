@@ -1,10 +1,13 @@
-// telemetry.csv's table: the header and one row per control step (columns and units in
-// README.md), then the controller's own columns.
+// telemetry.csv's columns, once: the fixed ones (columns and units in README.md), the
+// controller's own (Controller::ReportColumns), then the extras a flight has. The CSV, the
+// outputs written after a Python run and the benchmarks all take their columns and rows from a
+// TelemetrySchema, so that they cannot disagree.
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "control/controller.h"
 #include "mission/flight.h"
 #include "mission/setup.h"
 #include "telemetry/csv_table.h"
@@ -21,11 +24,26 @@ struct TelemetryExtras {
 };
 TelemetryExtras TelemetryExtrasFor(const FlightSetup& setup);
 
-// `controller_columns`: Controller::ReportColumns() of the controller that flies; they come
-// after the fixed columns and before the extras.
-CsvTable TelemetryTable(const std::vector<std::string>& controller_columns = {},
-                        const TelemetryExtras& extras = {});
-void AddTelemetryRow(const TelemetrySample& sample, CsvTable* table,
-                     const TelemetryExtras& extras = {});
+class TelemetrySchema {
+ public:
+  // The columns of a flight of `controller` with `extras`.
+  TelemetrySchema(const Controller& controller, const TelemetryExtras& extras);
+  // ... of a controller whose own columns are `controller_columns`.
+  explicit TelemetrySchema(std::vector<std::string> controller_columns = {},
+                           const TelemetryExtras& extras = {});
+
+  const std::vector<std::string>& columns() const { return columns_; }
+  const std::vector<std::string>& controller_columns() const { return controller_columns_; }
+  // An empty table with these columns.
+  CsvTable Table() const { return CsvTable(columns_); }
+  // One row of `sample`; throws std::logic_error naming the controller's columns when the
+  // sample's report has another number of values (a table made for another controller).
+  void AddRow(const TelemetrySample& sample, CsvTable* table) const;
+
+ private:
+  std::vector<std::string> controller_columns_;
+  TelemetryExtras extras_;
+  std::vector<std::string> columns_;
+};
 
 }  // namespace aerobox

@@ -50,8 +50,8 @@ void CsvOutputs::OnPlan(const PlanOutcome& plan) {
 void CsvOutputs::OnFlightStart(const Simulation&, const Controller& controller) {
   if (!telemetry_) return;
   telemetry_file_ = std::make_unique<StreamingFile>((fs::path(folder_) / "telemetry.csv").string());
-  controller_columns_ = controller.ReportColumns();
-  block_ = std::make_unique<CsvTable>(TelemetryTable(controller_columns_, extras_));
+  schema_ = TelemetrySchema(controller, extras_);
+  block_ = std::make_unique<CsvTable>(schema_.Table());
   header_length_ = block_->Text().size();
   telemetry_file_->Append(block_->Text());  // the header; blocks of rows follow
 }
@@ -59,10 +59,10 @@ void CsvOutputs::OnFlightStart(const Simulation&, const Controller& controller) 
 void CsvOutputs::OnSample(const TelemetrySample& sample) {
   if (!telemetry_) return;
   if (samples_++ % every_ != 0) return;
-  AddTelemetryRow(sample, block_.get(), extras_);
+  schema_.AddRow(sample, block_.get());
   if (block_->rows() < kTelemetryBlock) return;
   telemetry_file_->Append(block_->Text().substr(header_length_));
-  *block_ = TelemetryTable(controller_columns_, extras_);
+  *block_ = schema_.Table();
 }
 
 void CsvOutputs::OnFlightEnd(const Simulation&, const FlightResult&) {

@@ -38,7 +38,7 @@ class CsvOutputs : public MissionObserver {
   bool telemetry_;
   long samples_ = 0;
   std::unique_ptr<StreamingFile> telemetry_file_;
-  std::vector<std::string> controller_columns_;
+  TelemetrySchema schema_;  // the flying controller's, from OnFlightStart
   std::unique_ptr<CsvTable> block_;
   size_t header_length_ = 0;
 };

@@ -90,15 +90,21 @@ struct FlightRecord {
   PlanOutcome plan;
   std::vector<TelemetrySample> samples;
   FlightResult flight;
-  double wall_time = 0.0;  // [s]
+  double wall_time = 0.0;                       // [s]
+  std::vector<std::string> controller_columns;  // the controller's own (its report's names)
 };
 
-// Stands in for the run's controller when its outputs are written afterwards.
+// Stands in for the run's controller when its outputs are written afterwards: its columns.
 class RecordedController : public Controller {
  public:
+  explicit RecordedController(std::vector<std::string> columns) : columns_(std::move(columns)) {}
   ControlStatus Update(double, const State&, const FlatOutput&, ControlCommand*) override {
     return ControlStatus::Failed("a recorded run has no controller to call");
   }
+  std::vector<std::string> ReportColumns() const override { return columns_; }
+
+ private:
+  std::vector<std::string> columns_;
 };
 
 class SimulatorCore {
@@ -203,6 +209,7 @@ class SimulatorCore {
     FlightLoop loop;
     loop.vehicle = &setup_->vehicle;
     loop.controller = made.get();
+    record->controller_columns = made->ReportColumns();
     loop.control_rate = control_rate;
     loop.inner = setup_->controller.inner;
     loop.clearance = [this](const Vec3& p) { return world_.Clearance(p); };
@@ -466,7 +473,7 @@ std::string WriteOutputs(const FlightRecord& record, const std::string& out_dir,
       std::vector<MissionObserver*> observers = {&csv, &pictures};
       if (report) observers.push_back(&page);
       for (MissionObserver* o : observers) o->OnPlan(plan);
-      RecordedController controller;
+      RecordedController controller(record.controller_columns);
       for (MissionObserver* o : observers) o->OnFlightStart(sim, controller);
       for (const TelemetrySample& s : record.samples) {
         sim.SetVehicleState(s.state);

@@ -162,6 +162,19 @@ class WindowFlights(unittest.TestCase):
                 aerobox.write_outputs(result, os.path.join(folder, "bad"), size=(161, 120))
             self.assertFalse(os.path.exists(os.path.join(folder, "bad", "summary.json")))
 
+    def test_write_outputs_of_a_built_in_controller_keeps_its_own_columns(self):
+        # the cascade reports six columns of its own: the written table has them, row by row
+        result = self.sim.run("cascade", self.trajectory, t_final=2.0)
+        with tempfile.TemporaryDirectory() as folder:
+            out = aerobox.write_outputs(result, os.path.join(folder, "run"), video=False)
+            with open(os.path.join(out, "telemetry.csv")) as file:
+                rows = file.read().splitlines()
+        header = rows[0].split(",")
+        for column in ("vx_sp", "vy_sp", "vz_sp", "ax_sp", "ay_sp", "az_sp"):
+            self.assertIn(column, header)
+        self.assertEqual(len(rows) - 1, len(result["time"]))
+        self.assertTrue(all(len(row.split(",")) == len(header) for row in rows[1:]))
+
 
 class WindAndSensors(unittest.TestCase):
     """The scenario's [wind], [aero] and [sensors] as keywords: a Python controller flies the

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Every section of `aerobox bench` runs end to end in its smoke mode (one repetition, the
+# smallest sizes), the city section on a small generated city, so that no section can ship
+# broken. The numbers are not checked: speed is measured by the full benchmark, not by tests.
+# Usage: bench_smoke_test.sh AEROBOX_BINARY SOURCE_DIR
+set -euo pipefail
+aerobox=$1
+top=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+# an FCND-style city 790 m across: 30 seeded buildings and two corner posts
+/usr/bin/python3 - "$work/city.csv" << 'PY'
+import random, sys
+random.seed(3)
+rows = ["lat0 37.792480, lon0 -122.397450", "posX,posY,posZ,halfSizeX,halfSizeY,halfSizeZ"]
+for _ in range(30):
+    h = random.uniform(10, 40)
+    rows.append(f"{random.uniform(-380, 380):.1f},{random.uniform(-380, 380):.1f},{h:.1f},"
+                f"{random.uniform(5, 20):.1f},{random.uniform(5, 20):.1f},{h:.1f}")
+rows += ["-395,-395,2,5,5,2", "395,395,2,5,5,2"]
+open(sys.argv[1], "w").write("\n".join(rows) + "\n")
+PY
+
+cd "$top"
+"$aerobox" bench --smoke --city "$work/city.csv" > "$work/tables.md" 2> "$work/progress.txt" ||
+  { cat "$work/tables.md" "$work/progress.txt"; echo "FAIL: aerobox bench --smoke failed"; exit 1; }
+for heading in "Minimum snap" "The video path" "Closed loop" "Flight time" "A Python controller" \
+  "Robustness" "Replanning" "Sweep throughput" "City scale" "RRT\*"; do
+  grep -q "^## $heading" "$work/tables.md" ||
+    { cat "$work/tables.md"; echo "FAIL: no '$heading' section"; exit 1; }
+done
+if grep -q "skipped" "$work/tables.md"; then
+  cat "$work/tables.md"
+  echo "FAIL: a section was skipped"
+  exit 1
+fi
+echo "bench smoke: all 10 sections ran"
