@@ -13,6 +13,7 @@
 #include "mission/flight.h"
 #include "mission/plan.h"
 #include "mission/telemetry_table.h"
+#include "scenario/scenario.h"
 
 namespace aerobox {
 namespace {

@@ -4,8 +4,11 @@
 #include <string>
 #include <utility>
 
+#include "common/error.h"
 #include "geometry/collision_world.h"
-#include "scenario/scenario.h"
+#include "mission/setup.h"
+#include "planning/lattice_planner.h"
+#include "planning/planner.h"
 #include "trajectory/trajectory_generator.h"
 
 namespace aerobox {

@@ -9,6 +9,7 @@
 #include "mission/plan.h"
 #include "planning/path_simplify.h"
 #include "planning/planner.h"
+#include "scenario/scenario.h"
 #include "test_support.h"
 #include "trajectory/feasibility.h"
 
