@@ -427,7 +427,7 @@ TEST_CASE("unknown boxes, [sensing] and [replan]: the keys and their errors") {
         "scenes/x/scenario.toml:3: sensing.kind: expected \"omni\" or \"camera\"");
   CHECK(ScenarioError("map = \"m.txt\"\n[replan]\nlookahead = 1\n") ==
         "scenes/x/scenario.toml:3: replan.lookahead: unknown key (expected horizon, iterations, "
-        "time_budget or max_attempts)");
+        "search_iterations, time_budget or max_attempts)");
 }
 
 }  // namespace aerobox
