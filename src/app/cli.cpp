@@ -475,6 +475,10 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   CLI::App* check = app.add_subcommand(
       "check", "validate a map or scenario and print a summary (exit 2 when it is bad)");
   add_input(check);
+  CLI::App* keys = app.add_subcommand(
+      "keys",
+      "print the reference of scenario keys: unit, default, range and meaning of each (Markdown; "
+      "docs/scenario-keys.md)");
 
   std::vector<std::string> compare_inputs = {
       "scenes/window/scenario.toml", "scenes/maze/scenario.toml", "scenes/forest/scenario.toml",
@@ -542,6 +546,10 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
 
   try {
     if (model->parsed()) return RunModel(output, out);
+    if (keys->parsed()) {
+      out << ScenarioKeyReference();
+      return 0;
+    }
     if (compare->parsed()) return RunCompare(compare_inputs, compare_out, out, err);
     if (bench->parsed()) return RunBenchBinary(bench->remaining(), err);
     if (merge->parsed()) return RunSweepMerge(merge_folders, merge_out, out, err);

@@ -2,6 +2,12 @@
 
 namespace aerobox {
 
+void AeroParams::Describe(Archive& a) {
+  a.Boolean({"body_drag", "", "the body's drag in the air (a scenario's drag = true sets both)"},
+            &body_drag);
+  a.Boolean({"rotor_drag", "", "the rotors' induced drag, which also damps rotation"}, &rotor_drag);
+}
+
 Wrench AerodynamicWrench(const QuadParams& vehicle, const AeroParams& params, const State& state,
                          const Vec4& rotor_thrusts, const Vec3& wind_W) {
   const Mat3 R_WB = state.q_WB.toRotationMatrix();

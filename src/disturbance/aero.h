@@ -4,6 +4,7 @@
 // vehicle's (QuadParams::body_drag, rotor_drag).
 #pragma once
 
+#include "common/schema.h"
 #include "common/state.h"
 #include "common/types.h"
 #include "vehicle/quad_params.h"
@@ -14,6 +15,7 @@ struct AeroParams {
   bool body_drag = false;   // [aero] body_drag (or drag: both)
   bool rotor_drag = false;  // [aero] rotor_drag
   bool Enabled() const { return body_drag || rotor_drag; }
+  void Describe(Archive& a);  // [aero] (common/schema.h)
 };
 
 struct Wrench {

@@ -36,6 +36,17 @@ NavState InitialEstimate(const SensorParams& p, std::uint64_t seed, const State&
 
 }  // namespace
 
+void EstimatorParams::Describe(Archive& a) {
+  a.Number({"position_sigma", "m", "the filter's initial position uncertainty, 1 sigma"},
+           &position_sigma, 1e-6, 100);
+  a.Number({"velocity_sigma", "m/s", "the filter's initial velocity uncertainty"}, &velocity_sigma,
+           1e-6, 100);
+  a.Number({"attitude_sigma", "rad", "the filter's initial attitude uncertainty"}, &attitude_sigma,
+           1e-6, 3);
+  a.Number({"history", "s", "how late a measurement may arrive and still count"}, &history, 0.01,
+           10);
+}
+
 void EstimatorParams::Validate() const {
   const auto positive = [](double v, const char* field) {
     if (!(v > 0 && std::isfinite(v)))

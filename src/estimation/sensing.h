@@ -7,6 +7,7 @@
 #include <deque>
 #include <optional>
 
+#include "common/schema.h"
 #include "common/state.h"
 #include "estimation/eskf.h"
 #include "estimation/sensors.h"
@@ -21,6 +22,7 @@ struct EstimatorParams {
   double attitude_sigma = 0.02;  // [rad]
   double history = 0.5;          // [s] how late a measurement may arrive and still count
 
+  void Describe(Archive& a);  // [sensors.estimator] (common/schema.h)
   void Validate() const;
 };
 

@@ -29,6 +29,22 @@ Vec3 QuatToRotationVector(const Quat& q) {
   return 2.0 * std::atan2(s, u.w()) * u.vec() / s;
 }
 
+void ImuParams::Describe(Archive& a) {
+  a.Number({"rate", "Hz", "readings per second (divides the physics rate)"}, &rate, 1, 1000);
+  a.Number({"gyro_noise_density", "rad/s/sqrt(Hz)", "the gyro's white noise"}, &gyro_noise_density,
+           0, 100);
+  a.Number({"accel_noise_density", "m/s^2/sqrt(Hz)", "the accelerometer's white noise"},
+           &accel_noise_density, 0, 100);
+  a.Number({"gyro_bias_walk", "rad/s^2/sqrt(Hz)", "the gyro bias's random walk"}, &gyro_bias_walk,
+           0, 100);
+  a.Number({"accel_bias_walk", "m/s^3/sqrt(Hz)", "the accelerometer bias's random walk"},
+           &accel_bias_walk, 0, 100);
+  a.Number({"gyro_turn_on_bias", "rad/s", "the gyro's bias at power-on, 1 sigma per axis"},
+           &gyro_turn_on_bias, 0, 100);
+  a.Number({"accel_turn_on_bias", "m/s^2", "the accelerometer's bias at power-on, 1 sigma"},
+           &accel_turn_on_bias, 0, 100);
+}
+
 void ImuParams::Validate() const {
   if (!(rate > 0 && std::isfinite(rate))) throw std::invalid_argument("imu.rate: expected > 0 Hz");
   RequireNonNegative(gyro_noise_density, "imu.gyro_noise_density");

@@ -7,6 +7,7 @@
 #include <optional>
 #include <random>
 
+#include "common/schema.h"
 #include "common/state.h"
 #include "common/types.h"
 
@@ -26,7 +27,8 @@ struct ImuParams {
   double gyro_turn_on_bias = 0.0175;     // [rad/s] 1 sigma per axis: 1 deg/s
   double accel_turn_on_bias = 0.196;     // [m/s^2] 1 sigma per axis: 20 mg
 
-  void Validate() const;  // throws std::invalid_argument naming the field
+  void Describe(Archive& a);  // [sensors.imu] (common/schema.h)
+  void Validate() const;      // throws std::invalid_argument naming the field
 };
 
 // One reading: the mean angular velocity and specific force over the interval that ends at t,

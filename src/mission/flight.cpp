@@ -18,17 +18,20 @@
 
 namespace aerobox {
 
-void FlightParams::Validate() const {
-  const auto fail = [](const char* field, double value) {
-    throw std::invalid_argument(std::string("FlightParams.") + field +
-                                " out of range: " + FormatNumber(value));
-  };
-  if (!(settle_time >= 0 && std::isfinite(settle_time))) fail("settle_time", settle_time);
-  if (!(goal_tolerance > 0 && std::isfinite(goal_tolerance)))
-    fail("goal_tolerance", goal_tolerance);
-  if (!(goal_speed > 0 && std::isfinite(goal_speed))) fail("goal_speed", goal_speed);
-  if (!(flyaway_distance > 0)) fail("flyaway_distance", flyaway_distance);
+void FlightParams::Describe(Archive& a) {
+  a.Number({"settle_time", "s", "after the trajectory's end, to reach the goal"}, &settle_time, 0,
+           3600);
+  a.Number({"goal_tolerance", "m", "reached: this close to the goal ..."}, &goal_tolerance, 1e-3,
+           100);
+  a.Number({"goal_speed", "m/s", "... and this slow"}, &goal_speed, 1e-3, 100);
+  a.Number(
+      {"flyaway_distance", "m", "this far from the setpoint, the flight is lost (1e12: never)"},
+      &flyaway_distance, 0.01, 1e12);
+  a.Enum({"yaw", "", "hold the start's yaw, or turn along the travel"}, &face_travel,
+         {{false, "hold"}, {true, "travel"}});
 }
+
+void FlightParams::Validate() const { ValidateFields(*this, "flight"); }
 
 const char* ToString(FlightStatus status) {
   switch (status) {

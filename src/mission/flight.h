@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "common/flat_output.h"
+#include "common/schema.h"
 #include "control/controllers.h"
 #include "disturbance/aero.h"
 #include "disturbance/wind.h"
@@ -28,6 +29,7 @@ struct FlightParams {
   double flyaway_distance = 2.0;  // [m] from the setpoint: the flight is lost
   bool face_travel = false;       // yaw along the horizontal velocity; otherwise hold the start's
 
+  void Describe(Archive& a);  // [flight] (common/schema.h)
   // Throws std::invalid_argument naming the field.
   void Validate() const;
 };

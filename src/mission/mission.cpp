@@ -133,8 +133,11 @@ MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
   if (setup.HasUnknown()) {
     std::vector<Vec3> goals = loop.goals;
     goals.push_back(plan.goal.used);
+    // the flight's planner replans too; a given path cannot be replanned by itself: RRT* then
+    PlannerConfig planner = PlannerConfigFor(setup);
+    if (planner.kind == "waypoints") planner.kind = "rrt_star";
     replanner.emplace(setup.map, setup.unknown, setup.PlannerCollision(),
-                      setup.TrajectoryCollision(), setup.planning.rrt, TrajectoryParamsFor(setup),
+                      setup.TrajectoryCollision(), planner, TrajectoryParamsFor(setup),
                       setup.sensing, setup.replan, goals, plan.result.path, setup.seed);
     loop.update_reference = [&replanner](double t, double tr, const State& state, int reached,
                                          const Reference& current) {

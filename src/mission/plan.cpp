@@ -162,6 +162,15 @@ std::string PlannerKindFor(const FlightSetup& setup) {
   return IsCityScale(setup.map) ? "lattice" : "rrt_star";
 }
 
+PlannerConfig PlannerConfigFor(const FlightSetup& setup) {
+  PlannerConfig config;
+  config.kind = PlannerKindFor(setup);
+  config.rrt = setup.planning.rrt;
+  config.lattice = LatticeParamsFor(setup);
+  config.waypoints = setup.planning.waypoints;
+  return config;
+}
+
 LatticeParams FallbackLattice(const Aabb& free_bounds) {
   // as fine as kMaxFallbackNodes points allow, and no finer than 5 cm
   constexpr double kMaxFallbackNodes = 3e5;
@@ -197,11 +206,7 @@ void PlanLeg(const FlightSetup& setup, const CollisionWorld& world, const Vec3& 
       Validity{[&world](const Vec3& p) { return world.IsPointFree(p); },
                [&world](const Vec3& a, const Vec3& b) { return world.IsSegmentFree(a, b); }},
       seed};
-  PlannerConfig config;
-  config.kind = PlannerKindFor(setup);
-  config.rrt = settings.rrt;
-  config.lattice = LatticeParamsFor(setup);
-  config.waypoints = settings.waypoints;
+  PlannerConfig config = PlannerConfigFor(setup);
   outcome->planner = config.kind;
   outcome->result = MakePlanner(config, context)->Plan(from, to);
   if (outcome->result.status == PlanStatus::kPathBlocked) {

@@ -73,6 +73,9 @@ std::string DescribeBlockedPath(const PlanOutcome& plan);
 // The planner a set-up uses: [planner] kind, where "auto" is the lattice for a city-sized map
 // and RRT* otherwise.
 std::string PlannerKindFor(const FlightSetup& setup);
+// What the set-up's planner is made from (its kind, RRT*'s and the lattice's parameters, the
+// given waypoints).
+PlannerConfig PlannerConfigFor(const FlightSetup& setup);
 
 // The lattice that takes over when RRT* finds no path: over the whole free space, as fine as
 // 300,000 points allow (5 cm at the finest).

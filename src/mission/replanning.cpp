@@ -40,28 +40,32 @@ TrajectoryWorld ViewOf(const CollisionWorld& world) {
 
 }  // namespace
 
-void SensingParams::Validate() const {
-  const auto fail = [](const char* field, double value) {
-    throw std::invalid_argument(std::string("sensing.") + field +
-                                " out of range: " + FormatNumber(value));
-  };
-  if (!(range > 0 && std::isfinite(range))) fail("range", range);
-  if (!(fov_horizontal > 0 && fov_horizontal < 2 * M_PI)) fail("fov", fov_horizontal);
-  if (!(fov_vertical > 0 && fov_vertical < M_PI)) fail("fov_vertical", fov_vertical);
-  if (!(rate > 0 && rate <= 1000)) fail("rate", rate);
+void SensingParams::Describe(Archive& a) {
+  a.Enum({"kind", "", "a range sensor all round, or a depth camera along body x"}, &kind,
+         {{Kind::kOmni, "omni"}, {Kind::kCamera, "camera"}});
+  a.Number({"range", "m", "how far the sensor sees"}, &range, 0.1, 1000);
+  a.Degrees({"fov", "deg", "the camera's horizontal field (a RealSense D435's depth: 87)"},
+            &fov_horizontal, 1, 359);
+  a.Degrees({"fov_vertical", "deg", "the camera's vertical field"}, &fov_vertical, 1, 179);
+  a.Number({"rate", "Hz", "updates per second (divides the physics rate)"}, &rate, 0.1, 1000);
 }
 
-void ReplanParams::Validate() const {
-  const auto fail = [](const char* field, double value) {
-    throw std::invalid_argument(std::string("replan.") + field +
-                                " out of range: " + FormatNumber(value));
-  };
-  if (!(horizon >= 0 && horizon <= 5)) fail("horizon", horizon);
-  if (!(iterations >= 0)) fail("iterations", static_cast<double>(iterations));
-  if (!(search_iterations >= 1)) fail("search_iterations", static_cast<double>(search_iterations));
-  if (!(time_budget > 0 && time_budget <= 10)) fail("time_budget", time_budget);
-  if (!(max_attempts >= 1)) fail("max_attempts", max_attempts);
+void SensingParams::Validate() const { ValidateFields(*this, "sensing"); }
+
+void ReplanParams::Describe(Archive& a) {
+  a.Number({"horizon", "s", "ahead of the vehicle, where the new trajectory starts"}, &horizon, 0,
+           5);
+  a.Integer({"iterations", "", "RRT* iterations after its first solution, per leg"}, &iterations, 0,
+            10000000);
+  a.Integer({"search_iterations", "", "RRT* iterations for a first solution, per leg, at most"},
+            &search_iterations, 1, 10000000);
+  a.Number({"time_budget", "s", "wall time per leg: a safety cap, not the budget"}, &time_budget,
+           1e-3, 10);
+  a.Integer({"max_attempts", "", "attempts while braked before the flight gives up"}, &max_attempts,
+            1, 1000000);
 }
+
+void ReplanParams::Validate() const { ValidateFields(*this, "replan"); }
 
 double BrakingDeceleration(double max_tilt) { return 0.6 * kGravity * std::tan(max_tilt); }
 
@@ -137,7 +141,7 @@ bool SeesBox(const SensingParams& sensing, const State& state, const Aabb& box) 
 
 Replanner::Replanner(const Map& map, const std::vector<bool>& unknown,
                      const CollisionParams& planning, const CollisionParams& trajectory,
-                     const RrtStarParams& rrt, const TrajectoryParams& params,
+                     const PlannerConfig& planner, const TrajectoryParams& params,
                      const SensingParams& sensing, const ReplanParams& replan,
                      std::vector<Vec3> goals, std::vector<Vec3> path, std::uint64_t seed)
     : map_(map),
@@ -145,7 +149,7 @@ Replanner::Replanner(const Map& map, const std::vector<bool>& unknown,
       known_(map.boxes.size(), true),
       planning_(planning),
       trajectory_(trajectory),
-      rrt_(rrt),
+      planner_(planner),
       params_(params),
       sensing_(sensing),
       replan_(replan),
@@ -251,13 +255,16 @@ std::optional<Reference> Replanner::Replan(double t, double tr, int goals_reache
     const Validity validity{
         [&world](const Vec3& p) { return world.IsPointFree(p); },
         [&world](const Vec3& a, const Vec3& b) { return world.IsSegmentFree(a, b); }};
-    RrtStarParams rrt = rrt_;
-    rrt.time_budget = replan_.time_budget;
-    rrt.max_iterations = replan_.iterations;
-    rrt.max_search_iterations = replan_.search_iterations;
-    rrt.record_tree = false;
-    rrt.seed = seed_ + 7919ULL * (events_.size() + 1) + salt;
-    const PlanResult leg = PlanRrtStar(from, to, world.free_bounds(), validity, rrt);
+    // the flight's planner, through its seam; RRT* to [replan]'s counts
+    PlannerConfig config = planner_;
+    config.rrt.time_budget = replan_.time_budget;
+    config.rrt.max_iterations = replan_.iterations;
+    config.rrt.max_search_iterations = replan_.search_iterations;
+    config.rrt.record_tree = false;
+    const std::uint64_t seed = seed_ + 7919ULL * (events_.size() + 1) + salt;
+    config.rrt.seed = seed;
+    const PlanResult leg =
+        MakePlanner(config, PlannerContext{world.free_bounds(), validity, seed})->Plan(from, to);
     event.time_capped |= leg.stats.time_capped;
     if (leg.status != PlanStatus::kSolved) return false;
     out->insert(out->end(), leg.path.begin() + 1, leg.path.end());

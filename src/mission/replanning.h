@@ -8,10 +8,11 @@
 #include <string>
 #include <vector>
 
+#include "common/schema.h"
 #include "geometry/collision_world.h"
 #include "map/map.h"
 #include "mission/flight.h"
-#include "planning/rrt_star.h"
+#include "planning/planner.h"
 #include "trajectory/trajectory_generator.h"
 
 namespace aerobox {
@@ -27,7 +28,8 @@ struct SensingParams {
   double fov_vertical = 1.0123;    // [rad] 58 deg
   double rate = 30.0;              // [Hz] divides the physics rate
 
-  void Validate() const;  // throws std::invalid_argument naming the field
+  void Describe(Archive& a);  // [sensing] (common/schema.h)
+  void Validate() const;      // throws std::invalid_argument naming the field
 };
 
 // Replanning in flight: from the reference `horizon` seconds ahead of the vehicle, RRT* per leg
@@ -42,6 +44,7 @@ struct ReplanParams {
   double time_budget = 2.0;       // [s] of wall time per leg: a safety cap, not the budget
   int max_attempts = 50;          // attempts while braked before the flight gives up
 
+  void Describe(Archive& a);  // [replan] (common/schema.h)
   void Validate() const;
 };
 
@@ -90,13 +93,14 @@ bool SeesBox(const SensingParams& sensing, const State& state, const Aabb& box);
 class Replanner {
  public:
   // `planning` and `trajectory`: the collision parameters of the planner and of trajectories;
-  // `rrt` and `params` as the flight's planning uses them; `goals`: the mission's goals in
-  // order, the last one where the reference ends; `path`: the planned path the reference flies.
-  // A blocked path is repaired locally first: RRT* from the vehicle's state to the first point
-  // of the path beyond the blocked stretch from which the rest is free, then the rest; only
-  // when that fails, RRT* through all the goals still ahead.
+  // `planner` (through the Planner seam: a user's planner replans too) and `params` as the
+  // flight's planning uses them, RRT*'s counts replaced by [replan]'s; `goals`: the mission's
+  // goals in order, the last one where the reference ends; `path`: the planned path the
+  // reference flies. A blocked path is repaired locally first: the planner from the vehicle's
+  // state to the first point of the path beyond the blocked stretch from which the rest is free,
+  // then the rest; only when that fails, the planner through all the goals still ahead.
   Replanner(const Map& map, const std::vector<bool>& unknown, const CollisionParams& planning,
-            const CollisionParams& trajectory, const RrtStarParams& rrt,
+            const CollisionParams& trajectory, const PlannerConfig& planner,
             const TrajectoryParams& params, const SensingParams& sensing,
             const ReplanParams& replan, std::vector<Vec3> goals, std::vector<Vec3> path,
             std::uint64_t seed);
@@ -122,7 +126,7 @@ class Replanner {
   std::vector<bool> known_;
   CollisionParams planning_;
   CollisionParams trajectory_;
-  RrtStarParams rrt_;
+  PlannerConfig planner_;
   TrajectoryParams params_;
   SensingParams sensing_;
   ReplanParams replan_;

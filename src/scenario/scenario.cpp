@@ -3,11 +3,13 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
 #include "common/error.h"
 #include "common/number_format.h"
+#include "common/schema.h"
 #include "map/map_reader.h"
 #include "planning/planner.h"
 #include "scenario/read_file.h"
@@ -52,6 +54,78 @@ double Number(const toml::node& node, const std::string& file, const std::string
 bool Boolean(const toml::node& node, const std::string& file, const std::string& key) {
   if (!node.is_boolean()) throw InputError({file, LineOf(node)}, key, "expected true or false");
   return node.as_boolean()->get();
+}
+
+// A table read through a struct's Describe (common/schema.h): each field's key is looked up,
+// read, and checked against the field's range.
+class TomlFields : public Archive {
+ public:
+  TomlFields(const toml::table& table, std::string file, std::string prefix)
+      : table_(table), file_(std::move(file)), prefix_(std::move(prefix)) {}
+  using Archive::Integer;
+
+  void Number(const Field& field, double* value, double low, double high) override {
+    if (const toml::node* node = table_.get(field.name)) {
+      *value = aerobox::Number(*node, file_, prefix_ + field.name, low, high);
+    }
+  }
+  void Integer(const Field& field, long* value, long low, long high) override {
+    const toml::node* node = table_.get(field.name);
+    if (node == nullptr) return;
+    const std::optional<double> number = node->is_number() ? node->value<double>() : std::nullopt;
+    if (!number || !(*number >= static_cast<double>(low) && *number <= static_cast<double>(high)) ||
+        std::floor(*number) != *number) {
+      throw InputError(
+          {file_, LineOf(*node)}, prefix_ + field.name,
+          "expected a whole number from " + std::to_string(low) + " to " + std::to_string(high));
+    }
+    *value = static_cast<long>(*number);
+  }
+  void Boolean(const Field& field, bool* value) override {
+    if (const toml::node* node = table_.get(field.name)) {
+      *value = aerobox::Boolean(*node, file_, prefix_ + field.name);
+    }
+  }
+  void Choice(const Field& field, std::string* value,
+              const std::vector<std::string>& choices) override {
+    const toml::node* node = table_.get(field.name);
+    if (node == nullptr) return;
+    const std::optional<std::string> text = node->value<std::string>();
+    if (!text || std::find(choices.begin(), choices.end(), *text) == choices.end()) {
+      std::vector<std::string> quoted;
+      for (const std::string& choice : choices) quoted.push_back("\"" + choice + "\"");
+      throw InputError({file_, LineOf(*node)}, prefix_ + field.name,
+                       "expected " + ListOfNames(quoted));
+    }
+    *value = *text;
+  }
+
+ private:
+  const toml::table& table_;
+  std::string file_;
+  std::string prefix_;
+};
+
+// Reads `table` into `params` through its Describe. Keys read by hand around it are `before`
+// and `after` (in the order the unknown-key message lists them); any other key is refused,
+// naming the field it looks like a misspelling of.
+template <typename Params>
+void ReadFields(const toml::table& table, const std::string& file, const std::string& prefix,
+                Params* params, const std::vector<std::string>& before = {},
+                const std::vector<std::string>& after = {}) {
+  std::vector<std::string> names = before;
+  for (const KeyRow& row : KeyRows<Params>("")) names.push_back(row.key.substr(1));
+  names.insert(names.end(), after.begin(), after.end());
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    if (std::find(names.begin(), names.end(), name) != names.end()) continue;
+    const std::string nearest = NearestName(name, names);
+    throw InputError({file, LineOf(node)}, prefix + name,
+                     "unknown key (expected " + ListOfNames(names) + ")" +
+                         (nearest.empty() ? "" : "; did you mean " + nearest + "?"));
+  }
+  TomlFields reader(table, file, prefix);
+  params->Describe(reader);
 }
 
 void ReadPlanner(const toml::table& table, const std::string& file, PlanningSettings* settings) {
@@ -386,29 +460,7 @@ void ReadController(const toml::table& table, const std::string& file, int table
 }
 
 void ReadFlight(const toml::table& table, const std::string& file, FlightParams* flight) {
-  for (const auto& [key, node] : table) {
-    const std::string name(key.str());
-    const std::string field = "flight." + name;
-    if (name == "settle_time") {
-      flight->settle_time = Number(node, file, field, 0, 3600);
-    } else if (name == "goal_tolerance") {
-      flight->goal_tolerance = Number(node, file, field, 1e-3, 100);
-    } else if (name == "goal_speed") {
-      flight->goal_speed = Number(node, file, field, 1e-3, 100);
-    } else if (name == "flyaway_distance") {
-      flight->flyaway_distance = Number(node, file, field, 0.01, 1000);
-    } else if (name == "yaw") {
-      const std::string yaw = Text(node, file, field);
-      if (yaw != "hold" && yaw != "travel") {
-        throw InputError({file, LineOf(node)}, field, "expected \"hold\" or \"travel\"");
-      }
-      flight->face_travel = yaw == "travel";
-    } else {
-      throw InputError({file, LineOf(node)}, field,
-                       "unknown key (expected settle_time, goal_tolerance, goal_speed, "
-                       "flyaway_distance or yaw)");
-    }
-  }
+  ReadFields(table, file, "flight.", flight);
 }
 
 // The first candidate that is given; its origin goes to `origin`.
@@ -556,43 +608,15 @@ void ReadWind(const toml::table& table, const std::string& file, int table_line,
 }
 
 void ReadAero(const toml::table& table, const std::string& file, AeroParams* aero) {
-  for (const auto& [key, node] : table) {
-    const std::string name(key.str());
-    const std::string field = "aero." + name;
-    if (name == "drag") {
-      aero->body_drag = aero->rotor_drag = Boolean(node, file, field);
-    } else if (name == "body_drag") {
-      aero->body_drag = Boolean(node, file, field);
-    } else if (name == "rotor_drag") {
-      aero->rotor_drag = Boolean(node, file, field);
-    } else {
-      throw InputError({file, LineOf(node)}, field,
-                       "unknown key (expected drag, body_drag or rotor_drag)");
-    }
+  // drag: both at once, then each on its own
+  if (const toml::node* both = table.get("drag")) {
+    aero->body_drag = aero->rotor_drag = Boolean(*both, file, "aero.drag");
   }
+  ReadFields(table, file, "aero.", aero, {"drag"});
 }
 
 void ReadImu(const toml::table& table, const std::string& file, ImuParams* imu) {
-  for (const auto& [key, node] : table) {
-    const std::string name(key.str());
-    const std::string field = "sensors.imu." + name;
-    double* value = name == "rate"                  ? &imu->rate
-                    : name == "gyro_noise_density"  ? &imu->gyro_noise_density
-                    : name == "accel_noise_density" ? &imu->accel_noise_density
-                    : name == "gyro_bias_walk"      ? &imu->gyro_bias_walk
-                    : name == "accel_bias_walk"     ? &imu->accel_bias_walk
-                    : name == "gyro_turn_on_bias"   ? &imu->gyro_turn_on_bias
-                    : name == "accel_turn_on_bias"  ? &imu->accel_turn_on_bias
-                                                    : nullptr;
-    if (value == nullptr) {
-      throw InputError({file, LineOf(node)}, field,
-                       "unknown key (expected rate, gyro_noise_density, accel_noise_density, "
-                       "gyro_bias_walk, accel_bias_walk, gyro_turn_on_bias or "
-                       "accel_turn_on_bias)");
-    }
-    *value =
-        name == "rate" ? Number(node, file, field, 1, 1000) : Number(node, file, field, 0, 100);
-  }
+  ReadFields(table, file, "sensors.imu.", imu);
 }
 
 // The kind first (its defaults), then the overrides.
@@ -627,23 +651,7 @@ void ReadPositionSensor(const toml::table& table, const std::string& file,
 }
 
 void ReadEstimator(const toml::table& table, const std::string& file, EstimatorParams* e) {
-  for (const auto& [key, node] : table) {
-    const std::string name(key.str());
-    const std::string field = "sensors.estimator." + name;
-    if (name == "position_sigma") {
-      e->position_sigma = Number(node, file, field, 1e-6, 100);
-    } else if (name == "velocity_sigma") {
-      e->velocity_sigma = Number(node, file, field, 1e-6, 100);
-    } else if (name == "attitude_sigma") {
-      e->attitude_sigma = Number(node, file, field, 1e-6, 3);
-    } else if (name == "history") {
-      e->history = Number(node, file, field, 0.01, 10);
-    } else {
-      throw InputError({file, LineOf(node)}, field,
-                       "unknown key (expected position_sigma, velocity_sigma, attitude_sigma or "
-                       "history)");
-    }
-  }
+  ReadFields(table, file, "sensors.estimator.", e);
 }
 
 // [sensors]: imu and position, each true, false or a table; [sensors.estimator]; checked as a
@@ -680,51 +688,11 @@ void ReadSensors(const toml::table& table, const std::string& file, int table_li
 }
 
 void ReadSensing(const toml::table& table, const std::string& file, SensingParams* sensing) {
-  for (const auto& [key, node] : table) {
-    const std::string name(key.str());
-    const std::string field = "sensing." + name;
-    constexpr double kDegree = M_PI / 180.0;
-    if (name == "kind") {
-      const std::string kind = Text(node, file, field);
-      if (kind != "omni" && kind != "camera") {
-        throw InputError({file, LineOf(node)}, field, "expected \"omni\" or \"camera\"");
-      }
-      sensing->kind = kind == "camera" ? SensingParams::Kind::kCamera : SensingParams::Kind::kOmni;
-    } else if (name == "range") {
-      sensing->range = Number(node, file, field, 0.1, 1000);
-    } else if (name == "fov") {
-      sensing->fov_horizontal = Number(node, file, field, 1, 359) * kDegree;
-    } else if (name == "fov_vertical") {
-      sensing->fov_vertical = Number(node, file, field, 1, 179) * kDegree;
-    } else if (name == "rate") {
-      sensing->rate = Number(node, file, field, 0.1, 1000);
-    } else {
-      throw InputError({file, LineOf(node)}, field,
-                       "unknown key (expected kind, range, fov, fov_vertical or rate)");
-    }
-  }
+  ReadFields(table, file, "sensing.", sensing);
 }
 
 void ReadReplan(const toml::table& table, const std::string& file, ReplanParams* replan) {
-  for (const auto& [key, node] : table) {
-    const std::string name(key.str());
-    const std::string field = "replan." + name;
-    if (name == "horizon") {
-      replan->horizon = Number(node, file, field, 0, 5);
-    } else if (name == "iterations") {
-      replan->iterations = static_cast<long>(Number(node, file, field, 0, 1e7));
-    } else if (name == "search_iterations") {
-      replan->search_iterations = static_cast<long>(Number(node, file, field, 1, 1e7));
-    } else if (name == "time_budget") {
-      replan->time_budget = Number(node, file, field, 1e-3, 10);
-    } else if (name == "max_attempts") {
-      replan->max_attempts = static_cast<int>(Number(node, file, field, 1, 1e6));
-    } else {
-      throw InputError({file, LineOf(node)}, field,
-                       "unknown key (expected horizon, iterations, search_iterations, "
-                       "time_budget or max_attempts)");
-    }
-  }
+  ReadFields(table, file, "replan.", replan);
 }
 
 namespace {
@@ -804,6 +772,48 @@ Scenario ScenarioWithSettings(const std::string& text, const std::string& file,
 }
 
 }  // namespace
+
+std::string ScenarioKeyReference() {
+  struct Table {
+    const char* name;
+    const char* what;
+    std::vector<KeyRow> rows;
+  };
+  std::vector<KeyRow> aero = KeyRows<AeroParams>("aero");
+  aero.insert(aero.begin(), {"aero.drag", "", "false", "true or false",
+                             "body_drag and rotor_drag at once (read first)"});
+  const std::vector<Table> tables = {
+      {"flight", "when a flight has reached its goal, or is lost; the yaw",
+       KeyRows<FlightParams>("flight")},
+      {"aero", "drag in the air (the wind is [wind])", aero},
+      {"sensors.imu", "the IMU (sensors.imu = true: these defaults)",
+       KeyRows<ImuParams>("sensors.imu")},
+      {"sensors.estimator", "the error-state Kalman filter the controller flies on",
+       KeyRows<EstimatorParams>("sensors.estimator")},
+      {"sensing", "the sensor that reveals unknown boxes in flight",
+       KeyRows<SensingParams>("sensing")},
+      {"replan", "replanning around boxes revealed in flight", KeyRows<ReplanParams>("replan")},
+  };
+  std::ostringstream out;
+  out << "# Scenario keys\n\n"
+      << "Generated by `aerobox keys` from the parameter structs' own descriptions (a test fails "
+         "when this page is not what the code says). Every key is set in a scenario's table, "
+         "with `--set TABLE.KEY=VALUE` on the command line, or in a sweep's grid; a value "
+         "outside its range is refused naming the file, line and key, and a misspelt key is "
+         "refused naming the key it looks like.\n\n"
+      << "Tables not yet on this page ([planner], [trajectory], [vehicle], [controller], "
+         "[wind], [sensors.position], [render]) are described in the README.\n";
+  for (const Table& table : tables) {
+    out << "\n## [" << table.name << "]\n\n"
+        << table.what << ".\n\n"
+        << "| key | unit | default | range | meaning |\n|---|---|---|---|---|\n";
+    for (const KeyRow& row : table.rows) {
+      out << "| `" << row.key.substr(row.key.rfind('.') + 1) << "` | " << row.unit << " | "
+          << row.value << " | " << row.range << " | " << row.meaning << " |\n";
+    }
+  }
+  return out.str();
+}
 
 Setting ParseSetting(const std::string& text, const std::string& option) {
   const size_t equals = text.find('=');

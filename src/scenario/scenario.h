@@ -83,6 +83,11 @@ std::vector<TrajectorySample> ReadTrajectoryCsv(std::istream& in, const std::str
 // Parses scenario text; throws InputError naming the file, line and key at fault.
 Scenario ReadScenario(std::istream& in, const std::string& file);
 
+// The reference of every scenario key the schema describes (common/schema.h), as Markdown: per
+// table, each key's unit, default, valid range and meaning (`aerobox keys`; it is
+// docs/scenario-keys.md).
+std::string ScenarioKeyReference();
+
 // One scenario key set from outside the file (`--set KEY=VALUE`, a sweep's grid): a dotted key
 // and a TOML value; a bare word that is not TOML is taken as a string.
 struct Setting {

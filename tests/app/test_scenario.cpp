@@ -428,6 +428,15 @@ TEST_CASE("unknown boxes, [sensing] and [replan]: the keys and their errors") {
   CHECK(ScenarioError("map = \"m.txt\"\n[replan]\nlookahead = 1\n") ==
         "scenes/x/scenario.toml:3: replan.lookahead: unknown key (expected horizon, iterations, "
         "search_iterations, time_budget or max_attempts)");
+  // a misspelt key names the key it looks like; a whole number must be whole
+  CHECK(ScenarioError("map = \"m.txt\"\n[replan]\ntime_budjet = 1\n") ==
+        "scenes/x/scenario.toml:3: replan.time_budjet: unknown key (expected horizon, iterations, "
+        "search_iterations, time_budget or max_attempts); did you mean time_budget?");
+  CHECK(ScenarioError("map = \"m.txt\"\n[replan]\niterations = 2.5\n") ==
+        "scenes/x/scenario.toml:3: replan.iterations: expected a whole number from 0 to 10000000");
+  CHECK(ScenarioError("map = \"m.txt\"\n[aero]\nrotor_dreg = true\n") ==
+        "scenes/x/scenario.toml:3: aero.rotor_dreg: unknown key (expected drag, body_drag or "
+        "rotor_drag); did you mean rotor_drag?");
 }
 
 }  // namespace aerobox

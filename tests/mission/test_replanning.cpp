@@ -6,6 +6,7 @@
 
 #include "mission/mission.h"
 #include "mission/replanning.h"
+#include "planning/planner.h"
 
 namespace aerobox {
 namespace {
@@ -101,6 +102,43 @@ TEST_CASE("a wall the planner did not know is seen, flown around, and the same s
   const MissionResult plain = RunMission(known, MissionParts());
   CHECK(plain.status == MissionStatus::kReachedGoal);
   CHECK(plain.replans.empty());
+}
+
+namespace {
+
+int counted_plans = 0;  // calls of the test's planner
+
+// A planner of the test's own: RRT* through the seam, counting its queries.
+class CountingPlanner : public Planner {
+ public:
+  explicit CountingPlanner(std::unique_ptr<Planner> inner) : inner_(std::move(inner)) {}
+  PlanResult Plan(const Vec3& start, const Vec3& goal) override {
+    ++counted_plans;
+    return inner_->Plan(start, goal);
+  }
+
+ private:
+  std::unique_ptr<Planner> inner_;
+};
+
+}  // namespace
+
+TEST_CASE("replanning goes through the planner seam: a planner registered by a test replans") {
+  Planners().Register("counting", [](const PlannerConfig& config, const PlannerContext& context) {
+    PlannerConfig rrt = config;
+    rrt.kind = "rrt_star";
+    return std::unique_ptr<Planner>(std::make_unique<CountingPlanner>(MakePlanner(rrt, context)));
+  });
+  FlightSetup setup = RoomSetup(3);
+  setup.planning.planner = "counting";
+  counted_plans = 0;
+  const MissionResult result = RunMission(setup, MissionParts());
+  CAPTURE(ToString(result.flight.status));
+  REQUIRE(result.status == MissionStatus::kReachedGoal);
+  REQUIRE_FALSE(result.replans.empty());
+  CHECK(result.replans.back().outcome.find("replanned") != std::string::npos);
+  // the first plan, and the replan's queries: the test's planner made the new path
+  CHECK(counted_plans >= 2);
 }
 
 }  // namespace aerobox

@@ -1,0 +1,117 @@
+#include "common/schema.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "common/number_format.h"
+
+namespace aerobox {
+
+void Archive::Integer(const Field& field, int* value, long low, long high) {
+  long wide = *value;
+  Integer(field, &wide, low, high);
+  *value = static_cast<int>(wide);
+}
+
+void Archive::Degrees(const Field& field, double* radians, double low, double high) {
+  const double given = *radians * 180.0 / M_PI;
+  double degrees = given;
+  Number(field, &degrees, low, high);
+  if (degrees != given) *radians = degrees * (M_PI / 180.0);
+}
+
+std::string ListOfNames(const std::vector<std::string>& names) {
+  std::string text;
+  for (size_t i = 0; i < names.size(); ++i) {
+    text += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+  }
+  return text;
+}
+
+std::string NearestName(const std::string& name, const std::vector<std::string>& names) {
+  // Levenshtein distance, one row at a time
+  const auto distance = [](const std::string& a, const std::string& b) {
+    std::vector<size_t> row(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+      size_t diagonal = row[0];
+      row[0] = i;
+      for (size_t j = 1; j <= b.size(); ++j) {
+        const size_t above = row[j];
+        row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+        diagonal = above;
+      }
+    }
+    return row[b.size()];
+  };
+  std::string best;
+  size_t best_distance = 3;  // at most 2 edits
+  for (const std::string& candidate : names) {
+    const size_t d = distance(name, candidate);
+    if (d < best_distance && 2 * d < name.size()) {
+      best = candidate;
+      best_distance = d;
+    }
+  }
+  return best;
+}
+
+namespace schema_detail {
+namespace {
+
+std::string Quoted(const std::string& text) { return "\"" + text + "\""; }
+
+std::vector<std::string> QuotedAll(const std::vector<std::string>& names) {
+  std::vector<std::string> quoted;
+  for (const std::string& name : names) quoted.push_back(Quoted(name));
+  return quoted;
+}
+
+}  // namespace
+
+void RangeCheck::Number(const Field& field, double* value, double low, double high) {
+  if (!(*value >= low && *value <= high)) {
+    throw std::invalid_argument(table_ + "." + field.name +
+                                " out of range: " + FormatNumber(*value));
+  }
+}
+
+void RangeCheck::Integer(const Field& field, long* value, long low, long high) {
+  if (!(*value >= low && *value <= high)) {
+    throw std::invalid_argument(table_ + "." + field.name +
+                                " out of range: " + std::to_string(*value));
+  }
+}
+
+void RangeCheck::Choice(const Field& field, std::string* value,
+                        const std::vector<std::string>& choices) {
+  if (std::find(choices.begin(), choices.end(), *value) == choices.end()) {
+    throw std::invalid_argument(table_ + "." + field.name + " is not one of " +
+                                ListOfNames(choices) + ": '" + *value + "'");
+  }
+}
+
+void Reference::Number(const Field& field, double* value, double low, double high) {
+  rows.push_back({table_ + "." + field.name, field.unit, FormatNumber(*value),
+                  FormatNumber(low) + " to " + FormatNumber(high), field.meaning});
+}
+
+void Reference::Integer(const Field& field, long* value, long low, long high) {
+  rows.push_back({table_ + "." + field.name, field.unit, std::to_string(*value),
+                  std::to_string(low) + " to " + std::to_string(high), field.meaning});
+}
+
+void Reference::Boolean(const Field& field, bool* value) {
+  rows.push_back({table_ + "." + field.name, field.unit, *value ? "true" : "false", "true or false",
+                  field.meaning});
+}
+
+void Reference::Choice(const Field& field, std::string* value,
+                       const std::vector<std::string>& choices) {
+  rows.push_back({table_ + "." + field.name, field.unit, Quoted(*value),
+                  ListOfNames(QuotedAll(choices)), field.meaning});
+}
+
+}  // namespace schema_detail
+}  // namespace aerobox
