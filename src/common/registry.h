@@ -8,17 +8,26 @@
 #include <string>
 #include <vector>
 
+#include "common/schema.h"
+
 namespace aerobox {
 
 template <typename Factory>
 class Registry {
  public:
-  // Throws std::invalid_argument for an empty name or one that is already taken.
-  void Register(const std::string& name, Factory factory) {
+  // `parameters`: the entry's own, with their defaults (common/schema.h), which a scenario's
+  // table sets by key. Throws std::invalid_argument for an empty name or one already taken.
+  void Register(const std::string& name, Factory factory, PluginParameters parameters = {}) {
     if (name.empty()) throw std::invalid_argument("registry: an empty name");
     if (!entries_.emplace(name, std::move(factory)).second) {
       throw std::invalid_argument("registry: '" + name + "' is already registered");
     }
+    parameters_.emplace(name, std::move(parameters));
+  }
+  // The default parameters of `name` (empty: it has none of its own, or it is not there).
+  PluginParameters Parameters(const std::string& name) const {
+    const auto it = parameters_.find(name);
+    return it == parameters_.end() ? PluginParameters() : it->second;
   }
   // The factory of `name`, or nullptr.
   const Factory* Find(const std::string& name) const {
@@ -44,6 +53,7 @@ class Registry {
 
  private:
   std::map<std::string, Factory> entries_;
+  std::map<std::string, PluginParameters> parameters_;
 };
 
 }  // namespace aerobox

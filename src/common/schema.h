@@ -12,6 +12,8 @@
 //   }
 #pragma once
 
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -47,6 +49,52 @@ class Archive {
   void Enum(const Field& field, E* value, const std::vector<std::pair<E, std::string>>& names);
 };
 
+// A plug-in's own parameters (any struct with Describe), carried by value without src/ knowing
+// the type: a registry entry holds the defaults, a scenario's table sets its keys through the
+// schema, and the plug-in's factory reads them back with Get<P>().
+class PluginParameters {
+ public:
+  PluginParameters() = default;
+  template <typename P>
+  static PluginParameters Of(P defaults);
+  PluginParameters(const PluginParameters& other)
+      : holder_(other.holder_ ? other.holder_->Clone() : nullptr) {}
+  PluginParameters& operator=(const PluginParameters& other) {
+    holder_ = other.holder_ ? other.holder_->Clone() : nullptr;
+    return *this;
+  }
+  PluginParameters(PluginParameters&&) = default;
+  PluginParameters& operator=(PluginParameters&&) = default;
+
+  bool empty() const { return holder_ == nullptr; }
+  // Hands the fields to `a` (nothing when empty).
+  void Describe(Archive& a) {
+    if (holder_) holder_->Describe(a);
+  }
+  // The parameters as their own type; throws std::logic_error when they are another type.
+  template <typename P>
+  const P& Get() const;
+
+ private:
+  struct Base {
+    virtual ~Base() = default;
+    virtual void Describe(Archive& a) = 0;
+    virtual std::unique_ptr<Base> Clone() const = 0;
+  };
+  template <typename P>
+  struct Holder : Base {
+    explicit Holder(P v) : value(std::move(v)) {}
+    void Describe(Archive& a) override { value.Describe(a); }
+    std::unique_ptr<Base> Clone() const override { return std::make_unique<Holder>(value); }
+    P value;
+  };
+  std::unique_ptr<Base> holder_;
+};
+
+// The names of the fields `params` describes, in order.
+template <typename Params>
+std::vector<std::string> FieldNames(Params& params);
+
 // Checks every field of `params` against its range; throws std::invalid_argument reading
 // "<table>.<key> out of range: <value>" for the first that is not within it.
 template <typename Params>
@@ -64,6 +112,9 @@ struct KeyRow {
 // The rows of a default-made `Params` under `table` ("replan", "sensors.imu").
 template <typename Params>
 std::vector<KeyRow> KeyRows(const std::string& table);
+// The rows of `params` as they are (a plug-in's registered defaults).
+template <typename Params>
+std::vector<KeyRow> KeyRowsOf(Params& params, const std::string& table);
 
 // "a, b or c" (empty for none).
 std::string ListOfNames(const std::vector<std::string>& names);
@@ -120,6 +171,29 @@ void Archive::Enum(const Field& field, E* value,
   }
 }
 
+template <typename P>
+PluginParameters PluginParameters::Of(P defaults) {
+  PluginParameters parameters;
+  parameters.holder_ = std::make_unique<Holder<P>>(std::move(defaults));
+  return parameters;
+}
+
+template <typename P>
+const P& PluginParameters::Get() const {
+  const auto* holder = dynamic_cast<const Holder<P>*>(holder_.get());
+  if (holder == nullptr) throw std::logic_error("plug-in parameters of another type");
+  return holder->value;
+}
+
+template <typename Params>
+std::vector<std::string> FieldNames(Params& params) {
+  schema_detail::Reference reference("");
+  params.Describe(reference);
+  std::vector<std::string> names;
+  for (const KeyRow& row : reference.rows) names.push_back(row.key.substr(1));
+  return names;
+}
+
 template <typename Params>
 void ValidateFields(const Params& params, const std::string& table) {
   Params copy = params;
@@ -128,11 +202,16 @@ void ValidateFields(const Params& params, const std::string& table) {
 }
 
 template <typename Params>
+std::vector<KeyRow> KeyRowsOf(Params& params, const std::string& table) {
+  schema_detail::Reference reference(table);
+  params.Describe(reference);
+  return reference.rows;
+}
+
+template <typename Params>
 std::vector<KeyRow> KeyRows(const std::string& table) {
   Params defaults;
-  schema_detail::Reference reference(table);
-  defaults.Describe(reference);
-  return reference.rows;
+  return KeyRowsOf(defaults, table);
 }
 
 }  // namespace aerobox

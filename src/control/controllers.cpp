@@ -65,7 +65,9 @@ std::unique_ptr<Controller> MakeController(const ControllerConfig& config,
     throw std::invalid_argument("unknown controller '" + config.kind + "' (expected " +
                                 Controllers().NameList() + ")");
   }
-  std::unique_ptr<Controller> controller = (*factory)(config, vehicle);
+  ControllerConfig filled = config;
+  if (filled.params.empty()) filled.params = Controllers().Parameters(config.kind);
+  std::unique_ptr<Controller> controller = (*factory)(filled, vehicle);
   if (!config.drag_feedforward) return controller;
   return WithDragFeedForward(std::move(controller), LumpedDrag(vehicle));
 }

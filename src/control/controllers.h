@@ -27,6 +27,9 @@ struct ControllerConfig {
   // acceleration and jerk the thrust must produce, drag included. Scenarios turn it on with
   // [aero] unless [controller] drag_feedforward says otherwise.
   bool drag_feedforward = false;
+  // A registered controller's own parameters ([controller] keys beyond the built-ins'), with
+  // the defaults it registered (Registry::Register); empty for the built-ins.
+  PluginParameters params;
 
   // Throws std::invalid_argument naming the field.
   void Validate() const;
@@ -43,8 +46,9 @@ Registry<ControllerFactory>& Controllers();
 std::unique_ptr<Controller> WithDragFeedForward(std::unique_ptr<Controller> inner,
                                                 const DragModel& drag);
 
-// The controller `config.kind` names (with drag fed forward when config asks); throws
-// std::invalid_argument for an unknown kind.
+// The controller `config.kind` names (with drag fed forward when config asks; with its
+// registered default parameters when config has none); throws std::invalid_argument for an
+// unknown kind.
 std::unique_ptr<Controller> MakeController(const ControllerConfig& config,
                                            const QuadParams& vehicle);
 

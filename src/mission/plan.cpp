@@ -168,6 +168,7 @@ PlannerConfig PlannerConfigFor(const FlightSetup& setup) {
   config.rrt = setup.planning.rrt;
   config.lattice = LatticeParamsFor(setup);
   config.waypoints = setup.planning.waypoints;
+  config.params = setup.planning.planner_params;
   return config;
 }
 

@@ -33,6 +33,8 @@ struct PlanningSettings {
   std::string planner = "auto";
   // planner "waypoints": the path start, these, goal [m]
   std::vector<Vec3> waypoints;
+  // a registered planner's own parameters ([planner] keys beyond the built-ins')
+  PluginParameters planner_params;
   // when RRT* finds no path, a fine lattice over the map searches it exhaustively
   bool lattice_fallback = true;
   LatticeParams lattice;  // altitudes relative to the map's floor: see PlanFlight

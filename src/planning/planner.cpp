@@ -125,7 +125,10 @@ std::unique_ptr<Planner> MakePlanner(const PlannerConfig& config, const PlannerC
     throw std::invalid_argument("unknown planner '" + config.kind + "' (expected " +
                                 Planners().NameList() + ")");
   }
-  return (*factory)(config, context);
+  if (!config.params.empty()) return (*factory)(config, context);
+  PlannerConfig filled = config;  // a registered planner's defaults
+  filled.params = Planners().Parameters(config.kind);
+  return (*factory)(filled, context);
 }
 
 }  // namespace aerobox

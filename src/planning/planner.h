@@ -39,6 +39,9 @@ struct PlannerConfig {
   LatticeParams lattice;
   // kind "waypoints": the path goes start, these, goal [m], each leg checked
   std::vector<Vec3> waypoints;
+  // A registered planner's own parameters ([planner] keys beyond the built-ins'), with the
+  // defaults it registered; empty for the built-ins.
+  PluginParameters params;
 };
 
 using PlannerFactory =

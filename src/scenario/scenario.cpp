@@ -10,6 +10,7 @@
 #include "common/error.h"
 #include "common/number_format.h"
 #include "common/schema.h"
+#include "control/controllers.h"
 #include "map/map_reader.h"
 #include "planning/planner.h"
 #include "scenario/read_file.h"
@@ -128,8 +129,38 @@ void ReadFields(const toml::table& table, const std::string& file, const std::st
   params->Describe(reader);
 }
 
+// A registered plug-in's own keys in its table, after the built-in ones: read through its
+// parameters' Describe.
+void ReadPluginKeys(const toml::table& table, const std::string& file, const std::string& prefix,
+                    PluginParameters* params) {
+  TomlFields reader(table, file, prefix);
+  params->Describe(reader);
+}
+
+bool Contains(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+// ", own_a, own_b": a plug-in's keys for an unknown-key message.
+std::string MoreKeys(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) text += ", " + name;
+  return text;
+}
+
 void ReadPlanner(const toml::table& table, const std::string& file, PlanningSettings* settings) {
   RrtStarParams& rrt = settings->rrt;
+  // the kind first, whatever the table's order: a registered planner brings its own keys
+  if (const toml::node* kind = table.get("kind")) {
+    const std::optional<std::string> value = kind->value<std::string>();
+    if (!value || (*value != "auto" && Planners().Find(*value) == nullptr)) {
+      throw InputError({file, LineOf(*kind)}, "planner.kind",
+                       "expected auto, " + Planners().NameList());
+    }
+    settings->planner = *value;
+    settings->planner_params = Planners().Parameters(*value);
+  }
+  const std::vector<std::string> own = FieldNames(settings->planner_params);
   for (const auto& [key, node] : table) {
     const std::string name(key.str());
     const std::string field = "planner." + name;
@@ -147,12 +178,8 @@ void ReadPlanner(const toml::table& table, const std::string& file, PlanningSett
       rrt.rewire_factor = Number(node, file, field, 0.01, 100);
     } else if (name == "shortcut_attempts") {
       rrt.shortcut_attempts = static_cast<int>(Number(node, file, field, 0, 1e6));
-    } else if (name == "kind") {
-      const std::optional<std::string> value = node.value<std::string>();
-      if (!value || (*value != "auto" && Planners().Find(*value) == nullptr)) {
-        throw InputError({file, LineOf(node)}, field, "expected auto, " + Planners().NameList());
-      }
-      settings->planner = *value;
+    } else if (name == "kind" || Contains(own, name)) {
+      continue;  // read before, or by the plug-in's parameters after
     } else if (name == "waypoints") {
       const toml::array* points = node.as_array();
       if (points == nullptr) {
@@ -176,13 +203,17 @@ void ReadPlanner(const toml::table& table, const std::string& file, PlanningSett
         throw InputError({file, LineOf(node)}, field, "expected true or false");
       rrt.informed = node.as_boolean()->get();
     } else {
+      std::vector<std::string> keys = {
+          "kind",        "clearance",         "max_iterations",  "max_search_iterations",
+          "time_budget", "max_step",          "goal_bias",       "rewire_factor",
+          "informed",    "shortcut_attempts", "lattice_spacing", "lattice_fallback",
+          "waypoints"};
+      keys.insert(keys.end(), own.begin(), own.end());
       throw InputError({file, LineOf(node)}, field,
-                       "unknown key (expected kind, clearance, max_iterations, "
-                       "max_search_iterations, time_budget, max_step, goal_bias, rewire_factor, "
-                       "informed, shortcut_attempts, lattice_spacing, lattice_fallback or "
-                       "waypoints)");
+                       "unknown key (expected " + ListOfNames(keys) + ")");
     }
   }
+  ReadPluginKeys(table, file, "planner.", &settings->planner_params);
 }
 
 void ReadTrajectory(const toml::table& table, const std::string& file, PlanningSettings* settings) {
@@ -411,17 +442,20 @@ void ReadController(const toml::table& table, const std::string& file, int table
                              {"max_tilt", &cascade.max_tilt, 0.01, 1.5},
                              {"min_thrust_fraction", &cascade.min_thrust_fraction, 0.01, 0.99},
                              {"yaw_weight", &inner.attitude.yaw_weight, 0.01, 1}};
+  // the kind first, whatever the table's order: a registered controller brings its own keys
+  if (const toml::node* kind = table.get("kind")) {
+    config->kind = Text(*kind, file, "controller.kind");
+    if (Controllers().Find(config->kind) == nullptr) {
+      throw InputError({file, LineOf(*kind)}, "controller.kind",
+                       "expected " + Controllers().NameList() + ", got \"" + config->kind + "\"");
+    }
+    config->params = Controllers().Parameters(config->kind);
+  }
+  const std::vector<std::string> own = FieldNames(config->params);
   for (const auto& [key, node] : table) {
     const std::string name(key.str());
     const std::string field = "controller." + name;
-    if (name == "kind") {
-      config->kind = Text(node, file, field);
-      if (Controllers().Find(config->kind) == nullptr) {
-        throw InputError({file, LineOf(node)}, field,
-                         "expected " + Controllers().NameList() + ", got \"" + config->kind + "\"");
-      }
-      continue;
-    }
+    if (name == "kind" || Contains(own, name)) continue;  // before, or by the plug-in after
     if (name == "drag_feedforward") {
       config->drag_feedforward = Boolean(node, file, field);
       continue;
@@ -442,9 +476,11 @@ void ReadController(const toml::table& table, const std::string& file, int table
       std::string keys = "kind, drag_feedforward";
       for (const auto& gain : gains) keys += std::string(", ") + gain.first;
       for (const Bounded& number : numbers) keys += std::string(", ") + number.key;
-      throw InputError({file, LineOf(node)}, field, "unknown key (expected " + keys + ")");
+      throw InputError({file, LineOf(node)}, field,
+                       "unknown key (expected " + keys + MoreKeys(own) + ")");
     }
   }
+  ReadPluginKeys(table, file, "controller.", &config->params);
   // the rate must divide the 1 kHz physics rate
   const double steps = 1000.0 / config->rate;
   if (std::abs(steps - std::round(steps)) > 1e-9) {
@@ -775,8 +811,8 @@ Scenario ScenarioWithSettings(const std::string& text, const std::string& file,
 
 std::string ScenarioKeyReference() {
   struct Table {
-    const char* name;
-    const char* what;
+    std::string name;
+    std::string what;
     std::vector<KeyRow> rows;
   };
   std::vector<KeyRow> aero = KeyRows<AeroParams>("aero");
@@ -794,6 +830,19 @@ std::string ScenarioKeyReference() {
        KeyRows<SensingParams>("sensing")},
       {"replan", "replanning around boxes revealed in flight", KeyRows<ReplanParams>("replan")},
   };
+  // registered plug-ins' own keys, each under the kind that brings them
+  std::vector<Table> plugins;
+  const auto add_plugins = [&plugins](const std::string& table, const auto& registry) {
+    for (const std::string& name : registry.Names()) {
+      PluginParameters params = registry.Parameters(name);
+      if (params.empty()) continue;
+      plugins.push_back({table + "] kind = \"" + name,
+                         "a registered " + table + "'s own keys, beside the table's others",
+                         KeyRowsOf(params, table)});
+    }
+  };
+  add_plugins("controller", Controllers());
+  add_plugins("planner", Planners());
   std::ostringstream out;
   out << "# Scenario keys\n\n"
       << "Generated by `aerobox keys` from the parameter structs' own descriptions (a test fails "
@@ -803,8 +852,11 @@ std::string ScenarioKeyReference() {
          "refused naming the key it looks like.\n\n"
       << "Tables not yet on this page ([planner], [trajectory], [vehicle], [controller], "
          "[wind], [sensors.position], [render]) are described in the README.\n";
-  for (const Table& table : tables) {
-    out << "\n## [" << table.name << "]\n\n"
+  std::vector<Table> all = tables;
+  all.insert(all.end(), plugins.begin(), plugins.end());
+  for (const Table& table : all) {
+    out << "\n## [" << table.name << (table.name.find('=') == std::string::npos ? "]" : "\"")
+        << "\n\n"
         << table.what << ".\n\n"
         << "| key | unit | default | range | meaning |\n|---|---|---|---|---|\n";
     for (const KeyRow& row : table.rows) {
