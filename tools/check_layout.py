@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Checks that the code keeps the module table: README.md's "Layout" table names, for each folder
-of src/, the folders it may use (directly; what those may use comes with them). Every
+"""Checks that the code keeps the module table: docs/layout.md's "Layout" table names, for each
+folder of src/, the folders it may use (directly; what those may use comes with them). Every
 `#include "folder/..."` in src/F and every aerobox library F's CMakeLists.txt links must be F's
 own or one it may use, every folder of src/ must have a row, and no row may name a folder that
 is not there.
@@ -18,12 +18,13 @@ TARGET_FOLDERS = {"aerobox_python_seams": "python", "aerobox_python_embedded": "
                   "aerobox": "app"}
 
 
-def module_table(readme):
-    """{folder: set of folders it may use directly}, from the Layout table's last column."""
+def module_table(page):
+    """{folder: set of folders it may use directly}, from the Layout table's last column (the
+    table under a heading "# Layout" or "## Layout", up to the next heading)."""
     table, inside = {}, False
-    for line in readme.read_text(encoding="utf-8").splitlines():
-        if line.startswith("## "):
-            inside = line.strip() == "## Layout"
+    for line in page.read_text(encoding="utf-8").splitlines():
+        if line.startswith("# ") or line.startswith("## "):
+            inside = line.strip() in ("# Layout", "## Layout")
             continue
         match = re.match(r"\| `src/([a-z_]+)` \|.*\| ([^|]*) \|$", line) if inside else None
         if match:
@@ -53,17 +54,22 @@ def main(top):
     top = pathlib.Path(top)
     src = top / "src"
     folders = sorted(p.name for p in src.iterdir() if p.is_dir())
-    table = module_table(top / "README.md")
+    page = top / "docs" / "layout.md"
+    if not page.exists():
+        print("check_layout: docs/layout.md is missing: it holds the module table")
+        return 1
+    table = module_table(page)
     problems = []
     if not table:
-        problems.append("README.md: no Layout table with a 'may use' column")
+        problems.append("docs/layout.md: no Layout table with a 'may use' column")
     for folder in folders:
         if folder not in table:
-            problems.append(f"README.md: src/{folder} has no row in the Layout table")
+            problems.append(f"docs/layout.md: src/{folder} has no row in the Layout table")
     for folder, uses in table.items():
         for name in sorted(uses | {folder}):
             if name not in folders:
-                problems.append(f"README.md: the Layout table names src/{name}, which is not there")
+                problems.append(f"docs/layout.md: the Layout table names src/{name}, "
+                                "which is not there")
     for folder in folders:
         allowed = closure(table, folder) | {folder}
         for path in sorted((src / folder).rglob("*")):
@@ -88,7 +94,7 @@ def main(top):
     for problem in problems:
         print(problem)
     if problems:
-        print(f"check_layout: {len(problems)} violation(s) of the module table (README.md, Layout)")
+        print(f"check_layout: {len(problems)} violation(s) of the module table (docs/layout.md)")
         return 1
     print(f"check_layout: {len(folders)} folders keep the module table")
     return 0

@@ -9,7 +9,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 /usr/bin/python3 "$top/tools/check_layout.py" "$top"
 
-cp -r "$top/src" "$top/README.md" "$work/"
+cp -r "$top/src" "$top/docs" "$work/"
 printf '#include "scenario/scenario.h"\n' >> "$work/src/mission/plan.h"
 printf 'target_link_libraries(aerobox_map PRIVATE aerobox_outputs)\n' >> "$work/src/map/CMakeLists.txt"
 if /usr/bin/python3 "$top/tools/check_layout.py" "$work" > "$work/out.txt"; then

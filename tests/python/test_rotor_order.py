@@ -1,6 +1,6 @@
 """Rotor order: every built-in vehicle numbers its rotors as RotorPy does, so a motor-level
 controller written for RotorPy flies each of them; a user's own quad_params keep the order they
-were given in; the README's figure of the numbering is what the package exports."""
+were given in; docs/vehicle.md's figure of the numbering is what the package exports."""
 
 import math
 import os
@@ -223,19 +223,19 @@ class UserRotorOrder(unittest.TestCase):
 
 
 class ReadmeFigure(unittest.TestCase):
-    """The README's top view of the rotor numbering (The vehicle) is what the package exports:
+    """docs/vehicle.md's top view of the rotor numbering (The vehicle) is what the package exports:
     each label r1..r4 sits on the side of the figure's centre its rotor_pos has (nose up, y to
     the left) and says the spin its rotor_directions gives (CW: +1)."""
 
     LABEL = re.compile(r"\br([1-4]) (CCW|CW)\b")
 
     def figure(self):
-        with open(os.path.join(SOURCE, "README.md"), encoding="utf-8") as file:
+        with open(os.path.join(SOURCE, "docs", "vehicle.md"), encoding="utf-8") as file:
             text = file.read()
-        section = text[text.index("\n## The vehicle\n"):]
-        blocks = re.findall(r"```text\n(.*?)```", section, re.S)
+        self.assertTrue(text.startswith("# The vehicle\n"), "docs/vehicle.md: not The vehicle")
+        blocks = re.findall(r"```text\n(.*?)```", text, re.S)
         figures = [block for block in blocks if self.LABEL.search(block)]
-        self.assertTrue(figures, "README.md, The vehicle: no figure with r1..r4")
+        self.assertTrue(figures, "docs/vehicle.md, The vehicle: no figure with r1..r4")
         return figures[0]
 
     def test_the_figure_matches_quad_params(self):
