@@ -93,7 +93,9 @@ void RangeCheck::Choice(const Field& field, std::string* value,
 }
 
 void Reference::Number(const Field& field, double* value, double low, double high) {
-  rows.push_back({table_ + "." + field.name, field.unit, FormatNumber(*value),
+  // an infinite default is a cap not set
+  rows.push_back({table_ + "." + field.name, field.unit,
+                  std::isfinite(*value) ? FormatNumber(*value) : "none",
                   FormatNumber(low) + " to " + FormatNumber(high), field.meaning});
 }
 

@@ -271,6 +271,21 @@ class Planner {
 
 }  // namespace
 
+void RrtStarParams::Describe(Archive& a) {
+  a.Integer({"max_iterations", "", "RRT* samples after the first solution (0: only time_budget)"},
+            &max_iterations, 0, 100000000);
+  a.Integer({"max_search_iterations", "", "RRT* samples for a first solution (then the lattice)"},
+            &max_search_iterations, 0, 100000000);
+  a.Number({"time_budget", "s", "wall-time cap of one search"}, &time_budget, 1e-3, 3600);
+  a.Number({"max_step", "m", "longest edge the tree grows in one step (0: 0.2 x the diagonal)"},
+           &max_step, 0, 1e4);
+  a.Number({"goal_bias", "", "probability of steering at the goal"}, &goal_bias, 0, 0.99);
+  a.Number({"rewire_factor", "", "scales the rewiring neighbourhood"}, &rewire_factor, 0.01, 100);
+  a.Boolean({"informed", "", "sample only where the path can still improve"}, &informed);
+  a.Integer({"shortcut_attempts", "", "random shortcuts tried on the returned path"},
+            &shortcut_attempts, 0, 1000000);
+}
+
 void RrtStarParams::Validate() const {
   const auto fail = [](const char* field, double value) {
     throw std::invalid_argument(std::string("RrtStarParams.") + field +

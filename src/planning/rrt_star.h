@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/schema.h"
 #include "common/types.h"
 #include "planning/validity.h"
 
@@ -41,6 +42,8 @@ struct RrtStarParams {
   // Keep every edge as it was added (PlanResult::tree), to draw the tree growing.
   bool record_tree = false;
 
+  // A scenario's [planner] keys of RRT* (common/schema.h).
+  void Describe(Archive& a);
   // Throws std::invalid_argument naming the field and value.
   void Validate() const;
 };

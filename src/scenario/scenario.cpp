@@ -149,7 +149,6 @@ std::string MoreKeys(const std::vector<std::string>& names) {
 }
 
 void ReadPlanner(const toml::table& table, const std::string& file, PlanningSettings* settings) {
-  RrtStarParams& rrt = settings->rrt;
   // the kind first, whatever the table's order: a registered planner brings its own keys
   if (const toml::node* kind = table.get("kind")) {
     const std::optional<std::string> value = kind->value<std::string>();
@@ -160,26 +159,16 @@ void ReadPlanner(const toml::table& table, const std::string& file, PlanningSett
     settings->planner = *value;
     settings->planner_params = Planners().Parameters(*value);
   }
+  // RRT*'s keys through its Describe; these by hand; then the plug-in's own
+  std::vector<std::string> after = {"lattice_spacing", "lattice_fallback", "waypoints"};
   const std::vector<std::string> own = FieldNames(settings->planner_params);
+  after.insert(after.end(), own.begin(), own.end());
+  ReadFields(table, file, "planner.", &settings->rrt, {"kind", "clearance"}, after);
   for (const auto& [key, node] : table) {
     const std::string name(key.str());
     const std::string field = "planner." + name;
     if (name == "clearance") {
       settings->clearance = Number(node, file, field, 0.0, 10.0);
-    } else if (name == "max_iterations") {
-      rrt.max_iterations = static_cast<long>(Number(node, file, field, 0, 1e8));
-    } else if (name == "time_budget") {
-      rrt.time_budget = Number(node, file, field, 1e-3, 3600);
-    } else if (name == "max_step") {
-      rrt.max_step = Number(node, file, field, 0, 1e4);
-    } else if (name == "goal_bias") {
-      rrt.goal_bias = Number(node, file, field, 0, 0.99);
-    } else if (name == "rewire_factor") {
-      rrt.rewire_factor = Number(node, file, field, 0.01, 100);
-    } else if (name == "shortcut_attempts") {
-      rrt.shortcut_attempts = static_cast<int>(Number(node, file, field, 0, 1e6));
-    } else if (name == "kind" || Contains(own, name)) {
-      continue;  // read before, or by the plug-in's parameters after
     } else if (name == "waypoints") {
       const toml::array* points = node.as_array();
       if (points == nullptr) {
@@ -191,66 +180,25 @@ void ReadPlanner(const toml::table& table, const std::string& file, PlanningSett
         settings->waypoints.push_back(
             ReadPoint((*points)[i], file, (field + "[" + std::to_string(i) + "]").c_str()));
       }
-    } else if (name == "max_search_iterations") {
-      rrt.max_search_iterations = static_cast<long>(Number(node, file, field, 0, 1e8));
     } else if (name == "lattice_fallback") {
       settings->lattice_fallback = Boolean(node, file, field);
     } else if (name == "lattice_spacing") {
       settings->lattice.spacing = Number(node, file, field, 0.5, 100.0);
       settings->lattice.vertical_spacing = settings->lattice.spacing;
-    } else if (name == "informed") {
-      if (!node.is_boolean())
-        throw InputError({file, LineOf(node)}, field, "expected true or false");
-      rrt.informed = node.as_boolean()->get();
-    } else {
-      std::vector<std::string> keys = {
-          "kind",        "clearance",         "max_iterations",  "max_search_iterations",
-          "time_budget", "max_step",          "goal_bias",       "rewire_factor",
-          "informed",    "shortcut_attempts", "lattice_spacing", "lattice_fallback",
-          "waypoints"};
-      keys.insert(keys.end(), own.begin(), own.end());
-      throw InputError({file, LineOf(node)}, field,
-                       "unknown key (expected " + ListOfNames(keys) + ")");
     }
   }
   ReadPluginKeys(table, file, "planner.", &settings->planner_params);
 }
 
 void ReadTrajectory(const toml::table& table, const std::string& file, PlanningSettings* settings) {
-  TrajectoryParams& params = settings->trajectory;
+  // the trajectory's keys through its Describe; these by hand
+  ReadFields(table, file, "trajectory.", &settings->trajectory, {},
+             {"clearance", "method", "file"});
   for (const auto& [key, node] : table) {
     const std::string name(key.str());
     const std::string field = "trajectory." + name;
-    if (name == "max_speed") {
-      params.max_speed = Number(node, file, field, 0.01, 8.0);  // a Tello's top speed
-    } else if (name == "max_accel") {
-      params.max_accel = Number(node, file, field, 0.01, 10.0);
-    } else if (name == "objective") {
-      const std::optional<std::string> text = node.value<std::string>();
-      if (!text || (*text != "min-time" && *text != "snap")) {
-        throw InputError({file, LineOf(node)}, field, "expected \"min-time\" or \"snap\"");
-      }
-      params.objective = *text == "snap" ? TimeObjective::kSnap : TimeObjective::kMinTime;
-    } else if (name == "thrust_margin") {
-      params.thrust_margin = Number(node, file, field, 0.0, 0.9);
-    } else if (name == "max_tilt") {
-      params.max_tilt = Number(node, file, field, 0.05, 1.2);
-    } else if (name == "max_rate") {
-      params.max_rate = Number(node, file, field, 0.1, 50.0);
-    } else if (name == "max_vertical_speed") {
-      params.max_vertical_speed = Number(node, file, field, 0.01, 8.0);
-    } else if (name == "clearance") {
+    if (name == "clearance") {
       settings->trajectory_clearance = Number(node, file, field, 0.0, 10.0);
-    } else if (name == "corridors") {
-      params.use_corridors = Boolean(node, file, field);
-    } else if (name == "closed_form_fallback") {
-      params.closed_form_fallback = Boolean(node, file, field);
-    } else if (name == "corridor_growth") {
-      params.corridor_growth = Number(node, file, field, 0.0, 100.0);
-    } else if (name == "samples_per_segment") {
-      params.samples_per_segment = static_cast<int>(Number(node, file, field, 1, 1000));
-    } else if (name == "max_refinements") {
-      params.max_refinements = static_cast<int>(Number(node, file, field, 0, 100));
     } else if (name == "method") {
       const std::optional<std::string> text = node.value<std::string>();
       if (!text || TrajectoryGenerators().Find(*text) == nullptr) {
@@ -271,12 +219,6 @@ void ReadTrajectory(const toml::table& table, const std::string& file, PlanningS
       }
       std::istringstream in(text);
       settings->given_trajectory = ReadTrajectoryCsv(in, path);
-    } else {
-      throw InputError(
-          {file, LineOf(node)}, field,
-          "unknown key (expected objective, max_speed, max_accel, thrust_margin, max_tilt, "
-          "max_rate, max_vertical_speed, clearance, corridors, corridor_growth, "
-          "samples_per_segment, max_refinements, closed_form_fallback, method or file)");
     }
   }
 }
@@ -815,10 +757,34 @@ std::string ScenarioKeyReference() {
     std::string what;
     std::vector<KeyRow> rows;
   };
+  PlanningSettings planning;  // the defaults a scenario starts from
+  std::vector<KeyRow> planner = KeyRowsOf(planning.rrt, "planner");
+  planner.insert(planner.begin(),
+                 {{"planner.kind", "", "\"auto\"", "auto, " + Planners().NameList(),
+                   "auto: the lattice for a map wider than 200 m, RRT* otherwise"},
+                  {"planner.clearance", "m", FormatNumber(planning.clearance), "0 to 10",
+                   "kept from obstacles and the bounds, beyond the vehicle's own box"}});
+  planner.insert(planner.end(),
+                 {{"planner.lattice_spacing", "m", FormatNumber(planning.lattice.spacing),
+                   "0.5 to 100", "the lattice's spacing, across and up"},
+                  {"planner.lattice_fallback", "", "true", "true or false",
+                   "a fine lattice searches the map when RRT* finds no path"},
+                  {"planner.waypoints", "m", "[]", "points [[x, y, z], ...]",
+                   "kind \"waypoints\": the path goes start, these, goal"}});
+  std::vector<KeyRow> trajectory = KeyRowsOf(planning.trajectory, "trajectory");
+  trajectory.insert(trajectory.end(),
+                    {{"trajectory.clearance", "m", FormatNumber(planning.trajectory_clearance),
+                      "0 to 10", "kept from obstacles by the trajectory"},
+                     {"trajectory.method", "", "\"minsnap\"", TrajectoryGenerators().NameList(),
+                      "the generator: min-snap (ours), a baseline, or given"},
+                     {"trajectory.file", "", "", "a file name",
+                      "method \"given\": a trajectory.csv to fly, relative to the scenario"}});
   std::vector<KeyRow> aero = KeyRows<AeroParams>("aero");
   aero.insert(aero.begin(), {"aero.drag", "", "false", "true or false",
                              "body_drag and rotor_drag at once (read first)"});
   const std::vector<Table> tables = {
+      {"planner", "the path: RRT*, the lattice, given waypoints, or a registered planner", planner},
+      {"trajectory", "the trajectory along the path", trajectory},
       {"flight", "when a flight has reached its goal, or is lost; the yaw",
        KeyRows<FlightParams>("flight")},
       {"aero", "drag in the air (the wind is [wind])", aero},
@@ -850,8 +816,8 @@ std::string ScenarioKeyReference() {
          "with `--set TABLE.KEY=VALUE` on the command line, or in a sweep's grid; a value "
          "outside its range is refused naming the file, line and key, and a misspelt key is "
          "refused naming the key it looks like.\n\n"
-      << "Tables not yet on this page ([planner], [trajectory], [vehicle], [controller], "
-         "[wind], [sensors.position], [render]) are described in the README.\n";
+      << "Tables not yet on this page ([vehicle], [controller], [wind], [sensors.position], "
+         "[render]) are described in the pages linked from the README.\n";
   std::vector<Table> all = tables;
   all.insert(all.end(), plugins.begin(), plugins.end());
   for (const Table& table : all) {

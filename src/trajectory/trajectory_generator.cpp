@@ -236,6 +236,33 @@ FlatnessLimits EffectiveLimits(const TrajectoryParams& params) {
   return limits;
 }
 
+void TrajectoryParams::Describe(Archive& a) {
+  a.Enum({"objective", "", "the fastest the vehicle can fly, or min-snap scaled to the caps"},
+         &objective, {{TimeObjective::kMinTime, "min-time"}, {TimeObjective::kSnap, "snap"}});
+  a.Number({"max_speed", "m/s", "a speed cap (none: the vehicle's top speed decides)"}, &max_speed,
+           0.01, 8.0);
+  a.Number({"max_accel", "m/s^2", "an acceleration cap (none: the vehicle's thrust decides)"},
+           &max_accel, 0.01, 10.0);
+  a.Number({"thrust_margin", "", "min-time: share of each rotor's swing kept for the controller"},
+           &thrust_margin, 0.0, 0.9);
+  a.Number({"max_tilt", "rad", "min-time: the steepest tilt the trajectory asks"}, &max_tilt, 0.05,
+           1.2);
+  a.Number({"max_rate", "rad/s", "min-time: the fastest body rate the trajectory asks"}, &max_rate,
+           0.1, 50.0);
+  a.Number({"max_vertical_speed", "m/s", "min-time: the fastest climb or descent"},
+           &max_vertical_speed, 0.01, 8.0);
+  a.Boolean({"corridors", "", "keep the trajectory in boxes around the path (Ipopt)"},
+            &use_corridors);
+  a.Number({"corridor_growth", "m", "how far a corridor may reach past its segment's box"},
+           &corridor_growth, 0.0, 100.0);
+  a.Integer({"samples_per_segment", "", "constrained samples per segment"}, &samples_per_segment, 1,
+            1000);
+  a.Integer({"max_refinements", "", "rounds of inserting midpoints where it collides"},
+            &max_refinements, 0, 100);
+  a.Boolean({"closed_form_fallback", "", "when Ipopt fails, the closed form, refined and checked"},
+            &closed_form_fallback);
+}
+
 void TrajectoryParams::Validate() const {
   const auto fail = [](const char* field, double value) {
     throw std::invalid_argument(std::string("TrajectoryParams.") + field +

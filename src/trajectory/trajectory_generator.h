@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "common/schema.h"
 #include "trajectory/corridor.h"
 #include "trajectory/feasibility.h"
 #include "trajectory/min_snap.h"
@@ -57,6 +58,8 @@ struct TrajectoryParams {
   bool closed_form_fallback = true;
   IpoptSettings ipopt;
 
+  // A scenario's [trajectory] keys (common/schema.h).
+  void Describe(Archive& a);
   // Throws std::invalid_argument naming the field and value.
   void Validate() const;
 };
