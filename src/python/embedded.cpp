@@ -2,6 +2,7 @@
 
 #include <pybind11/embed.h>
 
+#include <filesystem>
 #include <memory>
 
 #include "common/error.h"
@@ -11,12 +12,22 @@ namespace aerobox {
 namespace {
 
 namespace py = pybind11;
+namespace fs = std::filesystem;
 using python::CommandChoice;
 
 void StartInterpreter() {
+  if (Py_IsInitialized()) return;
   // never finalised: the registries keep Python objects until the process ends
   // without Python's signal handlers: Ctrl-C stays aerobox's (outputs/interrupt.h)
-  if (!Py_IsInitialized()) py::initialize_interpreter(/*init_signal_handlers=*/false);
+  py::initialize_interpreter(/*init_signal_handlers=*/false);
+  // a user's module may `import aerobox`: the package beside this binary, in the build tree
+  // (build/python) or where it is installed (lib/python3/dist-packages), comes first
+  const fs::path bin = fs::read_symlink("/proc/self/exe").parent_path();
+  py::list path = py::module_::import("sys").attr("path");
+  for (const fs::path& dir : {bin / "python", bin / ".." / "lib" / "python3" / "dist-packages"}) {
+    if (fs::exists(dir / "aerobox" / "__init__.py"))
+      path.insert(0, dir.lexically_normal().string());
+  }
 }
 
 SourceLocation Where(const std::string& spec) { return {spec.substr(0, spec.rfind(':')), 0}; }
