@@ -1,0 +1,143 @@
+#include "mission/flight_parts.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tuple>
+
+#include "common/seed.h"
+
+namespace aerobox {
+namespace {
+
+// Take-off ends within this distance of the reference's start [m] and below this speed [m/s],
+// or after kMaxTakeoff [s] whatever happened.
+constexpr double kTakeoffTolerance = 0.02;
+constexpr double kTakeoffSpeed = 0.3;
+constexpr double kMaxTakeoff = 3.0;
+
+}  // namespace
+
+Takeoff::Takeoff(const Vec3& start, const State& initial, bool touching) : start_(start) {
+  // on the floor until the first step without floor contact. Before the first step MuJoCo has
+  // found no contact for a vehicle resting exactly on the floor: one that sits still right below
+  // the trajectory's start (PlaceVehicleAtStart leaves it on the floor) rests there too
+  const bool below_start = initial.v_W.norm() < kTakeoffSpeed &&
+                           (initial.p_W - start).head<2>().norm() < kTakeoffTolerance &&
+                           start.z() - initial.p_W.z() > kTakeoffTolerance;
+  airborne_ = !touching && !below_start;
+  lifting_ = !airborne_ && (initial.p_W - start).norm() > kTakeoffTolerance;
+}
+
+double Takeoff::ReferenceTime(double t, const State& state) {
+  if (lifting_ &&
+      (((state.p_W - start_).norm() < kTakeoffTolerance && state.v_W.norm() < kTakeoffSpeed) ||
+       t >= kMaxTakeoff)) {
+    lifting_ = false;
+    time_ = t;
+  }
+  return lifting_ ? 0.0 : t - time_;
+}
+
+Setpoints::Setpoints(const Reference& reference, bool face_travel, double initial_yaw)
+    : current_(reference), face_travel_(face_travel), yaw_(initial_yaw) {}
+
+FlatOutput Setpoints::At(double tr) {
+  const double duration = current_.duration;
+  FlatOutput setpoint;
+  setpoint.p_W = current_.evaluate(std::min(tr, duration), kPosition);
+  if (tr < duration) {
+    setpoint.v_W = current_.evaluate(tr, kVelocity);
+    setpoint.a_W = current_.evaluate(tr, kAcceleration);
+    setpoint.j_W = current_.evaluate(tr, kJerk);
+    setpoint.s_W = current_.evaluate(tr, kSnap);
+    const double speed_xy = setpoint.v_W.head<2>().norm();
+    if (current_.heading) {
+      std::tie(yaw_, setpoint.yaw_rate) = current_.heading(tr);
+    } else if (face_travel_ && speed_xy > 0.2) {
+      yaw_ = std::atan2(setpoint.v_W.y(), setpoint.v_W.x());
+      setpoint.yaw_rate =
+          (setpoint.v_W.x() * setpoint.a_W.y() - setpoint.v_W.y() * setpoint.a_W.x()) /
+          (speed_xy * speed_xy);
+    }
+  } else if (current_.heading) {
+    yaw_ = current_.heading(duration).first;
+  }
+  setpoint.yaw = yaw_;
+  return setpoint;
+}
+
+Air::Air(const WindParams& wind, const AeroParams& aero, const QuadParams& vehicle,
+         std::uint64_t seed, double ground_z)
+    : aero_(aero), vehicle_(&vehicle), ground_z_(ground_z) {
+  if (wind.Enabled()) field_.emplace(wind, StreamSeed(seed, SeedStream::kTurbulence));
+  enabled_ = field_.has_value() || aero.Enabled();
+  if (field_) wind_W_ = field_->current();
+}
+
+void Air::BeforeStep(double t, double step, const State& state, Simulation* sim) {
+  if (!enabled_) return;
+  // the wind where the vehicle is, and the drag it causes, held over the step
+  if (field_) wind_W_ = field_->Step(t, step, state.p_W.z() - ground_z_, state.v_W);
+  wrench_ = AerodynamicWrench(*vehicle_, aero_, state, sim->RotorThrusts(), wind_W_);
+  sim->SetExternalWrench(wrench_.force_W, wrench_.torque_W);
+}
+
+void Air::Clear(Simulation* sim) const {
+  if (enabled_) sim->SetExternalWrench(Vec3::Zero(), Vec3::Zero());
+}
+
+FlightMetrics::FlightMetrics(const QuadParams& vehicle)
+    : max_thrust_(vehicle.MaxRotorThrust()),
+      min_thrust_(vehicle.MinRotorThrust()),
+      min_clearance_(std::numeric_limits<double>::infinity()) {}
+
+void FlightMetrics::ControlStep(double error, bool tracking, double clearance,
+                                std::optional<double> estimate_error) {
+  if (tracking) {
+    // tracking from when the trajectory's clock starts: the take-off is reported on its own
+    squared_error_sum_ += error * error;
+    ++samples_;
+    max_error_ = std::max(max_error_, error);
+  }
+  min_clearance_ = std::min(min_clearance_, clearance);
+  if (estimate_error) {
+    const double e = *estimate_error;
+    estimated_ = true;
+    estimate_squared_sum_ += e * e;
+    estimate_max_error_ = std::max(estimate_max_error_, e);
+  }
+}
+
+void FlightMetrics::PhysicsStep(const Vec4& commanded, double step, const State& state,
+                                const Vec3& wind_W) {
+  // how hard the rotors worked, every physics step
+  peak_rotor_fraction_ = std::max(peak_rotor_fraction_, commanded.maxCoeff() / max_thrust_);
+  if ((commanded.array() >= max_thrust_ - 1e-9).any() ||
+      (commanded.array() <= min_thrust_ + 1e-9).any()) {
+    saturated_time_ += step;
+  }
+  top_speed_ = std::max(top_speed_, state.v_W.norm());
+  max_wind_ = std::max(max_wind_, wind_W.norm());
+}
+
+void FlightMetrics::Moved(const State& before, const State& after) {
+  distance_ += (after.p_W - before.p_W).norm();
+}
+
+void FlightMetrics::Fill(FlightResult* result) const {
+  result->rms_error = samples_ > 0 ? std::sqrt(squared_error_sum_ / samples_) : 0.0;
+  result->max_error = max_error_;
+  result->min_clearance = min_clearance_;
+  if (estimated_) {
+    result->estimate_max_error = estimate_max_error_;
+    if (samples_ > 0) result->estimate_rms_error = std::sqrt(estimate_squared_sum_ / samples_);
+  }
+  result->peak_rotor_fraction = peak_rotor_fraction_;
+  result->saturated_time = saturated_time_;
+  result->top_speed = top_speed_;
+  result->distance = distance_;
+  result->max_wind = max_wind_;
+}
+
+}  // namespace aerobox

@@ -1,0 +1,120 @@
+// The parts the closed loop (FlyTrajectory) is made of, after RotorPy's simulate() and Drake's
+// diagrams: each does one job with its own state, and the loop composes them in a fixed order.
+// They are the pieces several vehicles in one world and the learning environments step too.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+
+#include "common/flat_output.h"
+#include "common/state.h"
+#include "disturbance/aero.h"
+#include "disturbance/wind.h"
+#include "mission/flight.h"
+#include "sim/simulation.h"
+
+namespace aerobox {
+
+// Take-off: a vehicle resting on the floor below the reference's start lifts to it first. The
+// reference's clock waits at its start until the vehicle is there (within 2 cm, below 0.3 m/s)
+// or 3 s have passed; until the first step without floor contact, the floor is no collision.
+class Takeoff {
+ public:
+  // `start`: the reference's first point [m]; `initial` the vehicle's state, `touching`
+  // whether MuJoCo reports a contact before the first step.
+  Takeoff(const Vec3& start, const State& initial, bool touching);
+
+  // The reference's own time [s] at flight time `t`, ending the lift when the vehicle is there.
+  double ReferenceTime(double t, const State& state);
+  bool lifting() const { return lifting_; }
+  // Whether the vehicle has left the floor (floor contacts are collisions from then on).
+  bool airborne() const { return airborne_; }
+  void AfterStep(bool any_contact) { airborne_ = airborne_ || !any_contact; }
+  double time() const { return time_; }  // [s] of flight when the reference's clock started
+
+ private:
+  Vec3 start_;
+  bool airborne_;
+  bool lifting_;
+  double time_ = 0.0;
+};
+
+// The setpoints along the reference flown: its flat outputs up to snap while it runs, its end
+// held after; the yaw from the reference's heading, along the travel, or held. A replacement
+// reference (replanning) is flown from then on, on the same clock.
+class Setpoints {
+ public:
+  Setpoints(const Reference& reference, bool face_travel, double initial_yaw);
+
+  void Replace(const Reference& next) { current_ = next; }
+  const Reference& current() const { return current_; }
+  double duration() const { return current_.duration; }
+  // The setpoint at the reference's time `tr` [s].
+  FlatOutput At(double tr);
+
+ private:
+  Reference current_;
+  bool face_travel_;
+  double yaw_;  // [rad] the last one set: held when nothing sets another
+};
+
+// The air: the wind where the vehicle is (mean, gusts, turbulence) and the drag it causes,
+// applied to the simulation as an external wrench held over each physics step. Off, it does
+// nothing and the flight is the still-air one, step for step.
+class Air {
+ public:
+  Air(const WindParams& wind, const AeroParams& aero, const QuadParams& vehicle, std::uint64_t seed,
+      double ground_z);
+
+  bool enabled() const { return enabled_; }
+  // Before the physics step from `state` at flight time `t` [s] of `step` [s].
+  void BeforeStep(double t, double step, const State& state, Simulation* sim);
+  // Takes the wrench off the simulation (at the flight's end).
+  void Clear(Simulation* sim) const;
+  const Vec3& wind() const { return wind_W_; }  // [m/s] at the vehicle
+  const Wrench& wrench() const { return wrench_; }
+
+ private:
+  std::optional<WindField> field_;
+  AeroParams aero_;
+  const QuadParams* vehicle_;
+  double ground_z_;
+  bool enabled_;
+  Vec3 wind_W_ = Vec3::Zero();
+  Wrench wrench_;
+};
+
+// The numbers of a flight, kept as it goes: tracking from the reference's start, clearance, the
+// estimate's error, how hard the rotors worked, speed, distance and the strongest wind.
+class FlightMetrics {
+ public:
+  explicit FlightMetrics(const QuadParams& vehicle);
+  // At a control step: `error` [m] counts for tracking when `tracking` (the reference's clock
+  // runs); `clearance` [m]; the estimate's error [m] when there is an estimate.
+  void ControlStep(double error, bool tracking, double clearance,
+                   std::optional<double> estimate_error);
+  // Before each physics step of `step` [s]: the rotor commands [N], the speed, the wind [m/s].
+  void PhysicsStep(const Vec4& commanded, double step, const State& state, const Vec3& wind_W);
+  // After it: the distance flown.
+  void Moved(const State& before, const State& after);
+  // Into `result`: its tracking, clearance, estimate, effort, speed, distance and wind fields.
+  void Fill(FlightResult* result) const;
+
+ private:
+  double max_thrust_;
+  double min_thrust_;
+  double squared_error_sum_ = 0.0;
+  double max_error_ = 0.0;
+  long samples_ = 0;
+  double min_clearance_;
+  double estimate_squared_sum_ = 0.0;
+  double estimate_max_error_ = 0.0;
+  bool estimated_ = false;
+  double peak_rotor_fraction_ = 0.0;
+  double saturated_time_ = 0.0;
+  double top_speed_ = 0.0;
+  double distance_ = 0.0;
+  double max_wind_ = 0.0;
+};
+
+}  // namespace aerobox
