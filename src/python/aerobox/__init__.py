@@ -333,7 +333,7 @@ class Simulator:
         """The geoms the vehicle touches now (names; "floor" for the floor)."""
         return self._core.contacts()
 
-    def run(self, controller, trajectory, t_final=0.0, control_rate=500, command="auto",
+    def run(self, controller, trajectory, t_final=0.0, control_rate=None, command="auto",
             reset=True):
         """Flies `trajectory` with `controller` and returns RotorPy's result dict.
 
@@ -354,7 +354,8 @@ class Simulator:
             scenario's settle time (5 s). The run ends earlier once the vehicle is within
             0.10 m of the trajectory's end below 0.10 m/s (after its duration), or on contact,
             fly-away (2 m off the setpoint) or a non-finite state.
-        control_rate: [Hz] of controller.update (must divide 1000).
+        control_rate: [Hz] of controller.update (must divide 1000); None: the scenario's
+            [controller] rate, as `aerobox fly` uses it (250 Hz unless the scenario says).
         reset: start from the simulator's start (hovering at the trajectory's first point when
             the start is in the air); False: from the current state.
 
@@ -374,6 +375,8 @@ class Simulator:
         (its notes name the time); a command with a missing key, a wrong shape or a non-finite
         value raises ValueError naming the key and the time.
         """
+        if control_rate is None:
+            control_rate = self._core.setup.control_rate
         result, record = self._core.run(controller, trajectory, float(t_final),
                                         float(control_rate), command, reset)
         result["_record"] = record
