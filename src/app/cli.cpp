@@ -16,6 +16,7 @@
 #include "app/fly_job.h"
 #include "app/sweep_job.h"
 #include "common/error.h"
+#include "common/fault_injection.h"
 #include "common/number_format.h"
 #include "common/quoting.h"
 #include "common/subprocess.h"
@@ -31,6 +32,17 @@
 
 namespace aerobox {
 namespace {
+
+// The faults a fault test injects (AEROBOX_FAULT, common/fault_injection.h): read here, in the
+// command, and obeyed by the domain (FlightSetup::faults), which reads no environment.
+void ReadInjectedFaults(FlightSetup* setup) {
+  if (const std::optional<std::string> at = InjectedFault("nonfinite")) {
+    double from = 0.0;
+    if (!ParseNumber(*at, &from)) from = 0.0;
+    setup->faults.nonfinite_setpoint_from = from;
+  }
+  setup->faults.ipopt_failure = InjectedFault("ipopt").has_value();
+}
 
 // "X,Y,Z" from the command line [m].
 std::optional<Vec3> ParsePointOption(const std::string& text, const char* option,
@@ -609,6 +621,7 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
       overrides.turbulence = turbulence;
     }
     FlightSetup setup = LoadFlightSetup(input, overrides);
+    ReadInjectedFaults(&setup);
     if (!objective.empty()) {
       if (objective != "min-time" && objective != "snap") {
         throw InputError({"command line", 0}, "--objective", "expected min-time or snap");

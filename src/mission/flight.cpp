@@ -8,7 +8,6 @@
 #include <tuple>
 #include <utility>
 
-#include "common/fault_injection.h"
 #include "common/number_format.h"
 #include "common/rates.h"
 #include "common/stop.h"
@@ -75,16 +74,6 @@ void PlaceVehicleAtStart(const Map& map, const QuadParams& vehicle, const Vec3& 
 
 namespace {
 
-// The setpoint turns NaN from this flight time on [s] (an injected fault, for the fault tests:
-// common/fault_injection.h); infinity when none is injected.
-double NonFiniteSetpointFrom() {
-  double from = std::numeric_limits<double>::infinity();
-  if (const std::optional<std::string> at = InjectedFault("nonfinite")) {
-    if (!ParseNumber(*at, &from)) from = 0.0;
-  }
-  return from;
-}
-
 // Why the flight ends after this control and inner-loop step, if it does: lost, arrived, late.
 std::optional<FlightStatus> Verdict(const FlightParams& params, const FlightLoop& loop,
                                     const Takeoff& takeoff, double t, double tr, double duration,
@@ -134,7 +123,7 @@ class FlightRun {
         goal_(reference.evaluate(reference.duration, kPosition)),
         takeoff_(reference.evaluate(0.0, kPosition), sim->VehicleState(),
                  !sim->VehicleContacts().empty()),
-        nan_from_(NonFiniteSetpointFrom()),
+        nan_from_(loop.nonfinite_setpoint_from),
         air_(loop.wind, loop.aero, *loop.vehicle, loop.seed, loop.ground_z),
         metrics_(*loop.vehicle) {
     if (loop.sensors.Enabled()) {

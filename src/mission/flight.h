@@ -141,6 +141,8 @@ struct FlightLoop {
                                          const Reference& current)>
       update_reference;
   double ground_z = 0.0;  // [m] the floor's height, for the turbulence's scale lengths
+  // [s] of flight from which the setpoint is NaN (a fault test's; infinity: never)
+  double nonfinite_setpoint_from = std::numeric_limits<double>::infinity();
 };
 
 // Flies the reference from the simulation's current state (at rest on the floor or in the air

@@ -123,6 +123,7 @@ MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
   loop.vehicle = &setup.vehicle;
   loop.controller = controller;
   loop.control_rate = setup.controller.rate;
+  loop.nonfinite_setpoint_from = setup.faults.nonfinite_setpoint_from;
   loop.inner = setup.controller.inner;
   loop.clearance = [&world](const Vec3& p) { return world.Clearance(p); };
   AddAirAndSensors(setup, &loop);

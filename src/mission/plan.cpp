@@ -6,7 +6,6 @@
 #include <tuple>
 
 #include "common/error.h"
-#include "common/fault_injection.h"
 #include "common/number_format.h"
 #include "planning/path_simplify.h"
 #include "planning/planner.h"
@@ -444,7 +443,7 @@ TrajectoryResult TrajectoryAlong(const FlightSetup& setup, const std::vector<Vec
   GeneratorConfig config;
   config.method = settings.trajectory_method;
   config.params = TrajectoryParamsFor(setup);
-  config.params.ipopt.injected_failure = InjectedFault("ipopt").has_value();  // fault tests only
+  config.params.ipopt.injected_failure = setup.faults.ipopt_failure;  // fault tests only
   config.given = settings.given_trajectory;
   return MakeGenerator(config)->Generate(path, view);
 }

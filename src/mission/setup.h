@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -55,6 +56,12 @@ struct FlightSetup {
   WindParams wind;                     // [wind]
   AeroParams aero;                     // [aero]
   SensorParams sensors;                // [sensors]
+  // Faults the fault tests inject: the command reads them (AEROBOX_FAULT,
+  // common/fault_injection.h); the domain only obeys them.
+  struct Faults {
+    double nonfinite_setpoint_from = std::numeric_limits<double>::infinity();  // [s] of flight
+    bool ipopt_failure = false;  // every Ipopt solve reports a failure
+  } faults;
 
   // The vehicle's box grown by the planner's clearance, and by the trajectory's.
   CollisionParams PlannerCollision() const;
