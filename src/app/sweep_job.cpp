@@ -140,32 +140,7 @@ std::map<std::string, Json> ReadResults(const fs::path& file, bool* partial_tail
   return results;
 }
 
-// "<results>.lock", held while a sweep reads, repairs and appends its results file, so that two
-// processes never run the same shard into one folder; removed when released.
-class ResultsLock {
- public:
-  explicit ResultsLock(const fs::path& results) : path_(results.string() + ".lock") {
-    fd_ = open(path_.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
-    if (fd_ < 0) throw InputError({path_, 0}, "--out", "cannot write into the folder");
-    if (flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-      close(fd_);
-      throw InputError({results.string(), 0}, "--out",
-                       "another aerobox sweep is running into these results now");
-    }
-  }
-  ~ResultsLock() {
-    unlink(path_.c_str());
-    close(fd_);
-  }
-  ResultsLock(const ResultsLock&) = delete;
-  ResultsLock& operator=(const ResultsLock&) = delete;
-
- private:
-  std::string path_;
-  int fd_ = -1;
-};
-
-// Appends whole lines to a results file (under its ResultsLock).
+// Appends whole lines to a results file (under its lock).
 class ResultsFile {
  public:
   explicit ResultsFile(const fs::path& path) : path_(path) {
@@ -364,7 +339,10 @@ int RunSweep(const Sweep& sweep, const SweepOptions& options, std::ostream& out,
   }
   const fs::path folder = PrepareFolder(options.out_dir, "renders/" + sweep.name);
   const fs::path results_path = folder / ResultsName(shard);
-  const ResultsLock lock(results_path);
+  // "<results>.lock", held while a sweep reads, repairs and appends its results file, so that
+  // two processes never run the same shard into one folder
+  const FileLock lock(results_path.string() + ".lock", results_path.string(), "--out",
+                      "another aerobox sweep", "is running into these results now");
   const Json manifest = Manifest(sweep);
   bool partial_tail = false;
   std::map<std::string, Json> done;

@@ -116,6 +116,52 @@ void StreamingFile::Commit() {
   }
 }
 
+FileLock::FileLock(std::string path, const std::string& where, const std::string& field,
+                   const std::string& busy, const std::string& advice)
+    : path_(std::move(path)) {
+  while (true) {
+    fd_ = open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0) {
+      throw InputError({where, 0}, field,
+                       std::string("cannot write in the folder: ") + std::strerror(errno));
+    }
+    if (flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      // the owner writes its process id just after taking the lock: wait a moment for it
+      std::string pid;
+      for (int attempt = 0; attempt < 20 && pid.empty(); ++attempt) {
+        char holder[32] = {0};
+        const ssize_t n = pread(fd_, holder, sizeof(holder) - 1, 0);
+        pid = n > 0 ? std::string(holder, static_cast<size_t>(n)) : "";
+        while (!pid.empty() && (pid.back() == '\n' || pid.back() == ' ')) pid.pop_back();
+        if (pid.empty()) usleep(10000);
+      }
+      close(fd_);
+      fd_ = -1;
+      throw InputError({where, 0}, field,
+                       busy + (pid.empty() ? "" : " (process " + pid + ")") + " " + advice);
+    }
+    // the file may have been removed by its last owner between our open and our lock
+    struct stat opened {
+    }, named{};
+    if (fstat(fd_, &opened) == 0 && stat(path_.c_str(), &named) == 0 &&
+        opened.st_ino == named.st_ino) {
+      break;
+    }
+    close(fd_);
+  }
+  const std::string pid = std::to_string(getpid()) + "\n";
+  if (ftruncate(fd_, 0) != 0 || pwrite(fd_, pid.data(), pid.size(), 0) < 0) {
+    // the lock holds without the note of its owner
+  }
+  RegisterPartialFile(path_);  // the Ctrl-C watchdog removes it too
+}
+
+FileLock::~FileLock() {
+  UnregisterPartialFile(path_);
+  std::remove(path_.c_str());
+  close(fd_);  // releases the lock
+}
+
 OutputFolder::OutputFolder(const std::string& requested, const std::string& name) {
   const fs::path folder = requested.empty() ? fs::path("renders") / name : fs::path(requested);
   path_ = folder.string();
@@ -127,44 +173,10 @@ OutputFolder::OutputFolder(const std::string& requested, const std::string& name
     throw InputError({folder.string(), 0}, "--out",
                      "cannot create the output folder: " + ec.message());
   }
-  // one run at a time per folder: an advisory lock on a file holding the owner's process id
-  lock_path_ = (folder / ".aerobox.lock").string();
-  while (true) {
-    lock_fd_ = open(lock_path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (lock_fd_ < 0) {
-      throw InputError({path_, 0}, "--out",
-                       std::string("cannot write in the output folder: ") + std::strerror(errno));
-    }
-    if (flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
-      // the owner writes its process id just after taking the lock: wait a moment for it
-      std::string pid;
-      for (int attempt = 0; attempt < 20 && pid.empty(); ++attempt) {
-        char holder[32] = {0};
-        const ssize_t n = pread(lock_fd_, holder, sizeof(holder) - 1, 0);
-        pid = n > 0 ? std::string(holder, static_cast<size_t>(n)) : "";
-        while (!pid.empty() && (pid.back() == '\n' || pid.back() == ' ')) pid.pop_back();
-        if (pid.empty()) usleep(10000);
-      }
-      close(lock_fd_);
-      lock_fd_ = -1;
-      throw InputError({path_, 0}, "--out",
-                       "another aerobox run" + (pid.empty() ? "" : " (process " + pid + ")") +
-                           " is writing into this folder; wait for it or give another --out");
-    }
-    // the file may have been removed by its last owner between our open and our lock
-    struct stat opened {
-    }, named{};
-    if (fstat(lock_fd_, &opened) == 0 && stat(lock_path_.c_str(), &named) == 0 &&
-        opened.st_ino == named.st_ino) {
-      break;
-    }
-    close(lock_fd_);
-  }
-  const std::string pid = std::to_string(getpid()) + "\n";
-  if (ftruncate(lock_fd_, 0) != 0 || pwrite(lock_fd_, pid.data(), pid.size(), 0) < 0) {
-    // the lock holds without the note of its owner
-  }
-  RegisterPartialFile(lock_path_);  // the Ctrl-C watchdog removes it too
+  // one run at a time per folder
+  lock_ = std::make_unique<FileLock>(
+      (folder / ".aerobox.lock").string(), path_, "--out", "another aerobox run",
+      "is writing into this folder; wait for it or give another --out");
   // with the lock held, any other staging folder is a dead run's
   for (const fs::directory_entry& entry : fs::directory_iterator(folder, ec)) {
     if (entry.path().filename().string().rfind(kStagingPrefix, 0) == 0) {
@@ -175,9 +187,7 @@ OutputFolder::OutputFolder(const std::string& requested, const std::string& name
   RegisterPartialFile(staging_);
   if (!fs::create_directory(staging_, ec) || ec) {
     UnregisterPartialFile(staging_);
-    UnregisterPartialFile(lock_path_);
-    std::remove(lock_path_.c_str());
-    close(lock_fd_);
+    lock_.reset();
     throw InputError({path_, 0}, "--out", "cannot write in the output folder: " + ec.message());
   }
   // a folder this run made holds nothing but this run's: an abrupt end removes it whole
@@ -190,10 +200,8 @@ OutputFolder::~OutputFolder() {
     fs::remove_all(staging_, ec);  // a run that did not commit leaves the folder as it was
     UnregisterPartialFile(staging_);
   }
-  if (lock_fd_ < 0) return;
-  UnregisterPartialFile(lock_path_);
-  std::remove(lock_path_.c_str());
-  close(lock_fd_);  // releases the lock
+  if (!lock_) return;
+  lock_.reset();
   // bad input leaves nothing behind: not even the folder this run made, when it stayed empty
   if (created_) UnregisterPartialFile(path_);
   if (created_ && fs::is_empty(path_, ec)) fs::remove(path_, ec);

@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include "common/error.h"
@@ -36,6 +37,23 @@ class StreamingFile {
 // ".<process id>.partial": the suffix of this process's temporary files, so that two runs
 // never write one temporary file.
 std::string PartialSuffix();
+
+// The one lock of aerobox: an advisory lock on the file `path` (made if missing) that notes its
+// owner's process id, one holder at a time across processes. When another process holds it,
+// throws InputError at `where` for `field`: "<busy> (process N); <advice>". Released, and the
+// file removed, when destroyed; a Ctrl-C's last resort removes the file too.
+class FileLock {
+ public:
+  FileLock(std::string path, const std::string& where, const std::string& field,
+           const std::string& busy, const std::string& advice);
+  ~FileLock();
+  FileLock(const FileLock&) = delete;
+  FileLock& operator=(const FileLock&) = delete;
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+};
 
 // A run's output folder: `requested`, or renders/<name>/ when it is empty; created, locked
 // against other aerobox runs (a second run into it stops with exit 2, naming the holder), and
@@ -75,8 +93,7 @@ class OutputFolder {
  private:
   std::string path_;
   std::string staging_;
-  std::string lock_path_;
-  int lock_fd_ = -1;
+  std::unique_ptr<FileLock> lock_;
   bool created_ = false;
   bool committed_ = false;
 };

@@ -80,3 +80,26 @@ TEST_CASE("a second run into a locked folder is refused before it writes") {
 }
 
 }  // namespace aerobox
+
+namespace aerobox {
+
+TEST_CASE("the one file lock: a second holder is refused naming the first, and it is released") {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("aerobox-lock-" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "x.lock").string();
+  {
+    const FileLock first(path, dir.string(), "--out", "another holder", "holds it");
+    CHECK(std::filesystem::exists(path));
+    CHECK_THROWS_WITH_AS(FileLock(path, dir.string(), "--out", "another holder", "holds it"),
+                         (dir.string() + ": --out: another holder (process " +
+                          std::to_string(getpid()) + ") holds it")
+                             .c_str(),
+                         InputError);
+  }
+  CHECK_FALSE(std::filesystem::exists(path));  // released and removed
+  CHECK_NOTHROW(FileLock(path, dir.string(), "--out", "another holder", "holds it"));
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace aerobox
