@@ -7,6 +7,7 @@
 #include <iomanip>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 
 #include "app/exit_codes.h"
 #include "common/number_format.h"
@@ -23,25 +24,16 @@
 
 namespace aerobox {
 namespace fs = std::filesystem;
-namespace {
-
-CameraSpec ParseCamera(const std::string& name) {
-  if (name == "overview") return {CameraKind::kOverview, ""};
-  if (name == "top") return {CameraKind::kTop, ""};
-  return {CameraKind::kChase, ""};
-}
-
-}  // namespace
-
 void ValidateFlyOptions(const FlyOptions& options) {
   const SourceLocation command_line{"command line", 0};
   if (options.quality != "fast" && options.quality != "pretty") {
     throw InputError(command_line, "--quality",
                      "expected fast or pretty, got '" + options.quality + "'");
   }
-  if (options.camera != "chase" && options.camera != "overview" && options.camera != "top") {
-    throw InputError(command_line, "--camera",
-                     "expected chase, overview or top, got '" + options.camera + "'");
+  try {
+    ParseCamera(options.camera);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(command_line, "--camera", e.what());
   }
   if (!(options.fps > 0 && options.fps <= 240)) {
     throw InputError(command_line, "--fps", "expected 1 to 240 frames per second");

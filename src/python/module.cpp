@@ -442,12 +442,10 @@ std::string WriteOutputs(const FlightRecord& record, const std::string& out_dir,
       render.height = height;
       render.video = video;
       render.fps = fps;
-      if (camera == "overview") {
-        render.camera = {CameraKind::kOverview, ""};
-      } else if (camera == "top") {
-        render.camera = {CameraKind::kTop, ""};
-      } else if (camera != "chase") {
-        throw py::value_error("camera '" + camera + "': expected chase, overview or top");
+      try {
+        render.camera = ParseCamera(camera);
+      } catch (const std::invalid_argument& e) {
+        throw py::value_error(std::string("camera: ") + e.what());
       }
       if (width < 16 || height < 16 || (video && (width % 2 || height % 2))) {
         throw py::value_error("size: expected even sides of 16 pixels or more");

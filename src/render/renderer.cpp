@@ -9,6 +9,13 @@
 #include "vehicle/model_names.h"
 
 namespace aerobox {
+
+CameraSpec ParseCamera(const std::string& name) {
+  if (name == "chase") return {CameraKind::kChase, ""};
+  if (name == "overview") return {CameraKind::kOverview, ""};
+  if (name == "top") return {CameraKind::kTop, ""};
+  throw std::invalid_argument("expected chase, overview or top, got '" + name + "'");
+}
 namespace {
 
 constexpr int kOverlayGeoms = 6000;       // room in the scene for overlay geoms

@@ -26,6 +26,10 @@ struct CameraSpec {
   std::string name;  // for kNamed: a camera of the scene
 };
 
+// The camera a user names: "chase", "overview" or "top"; throws std::invalid_argument
+// ("expected chase, overview or top, got 'x'") for any other name.
+CameraSpec ParseCamera(const std::string& name);
+
 // A box drawn in every frame that is not part of the simulated scene: the far buildings of a
 // city flight, left out of MuJoCo's model to keep its steps cheap (SceneOptions::keep_boxes).
 struct SceneryBox {

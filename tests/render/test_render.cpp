@@ -325,4 +325,12 @@ TEST_CASE("the vehicle is marked where a camera sees the whole map") {
   CHECK(darker > 50);
 }
 
+TEST_CASE("cameras by name: one parser for the command and the package, unknown names refused") {
+  CHECK(ParseCamera("chase").kind == CameraKind::kChase);
+  CHECK(ParseCamera("overview").kind == CameraKind::kOverview);
+  CHECK(ParseCamera("top").kind == CameraKind::kTop);
+  CHECK_THROWS_WITH_AS(ParseCamera("side"), "expected chase, overview or top, got 'side'",
+                       std::invalid_argument);
+}
+
 }  // namespace aerobox
