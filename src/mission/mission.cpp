@@ -41,6 +41,74 @@ std::vector<Vec3> Route(const FlightSetup& setup, const PiecewiseTrajectory& tra
 // How often waiting for the scene thread looks for a stop request.
 constexpr std::chrono::milliseconds kSceneWaitPoll{10};
 
+// The plan, made while the scene loads on its own thread (joined on every way out); a Ctrl-C
+// while the scene thread is still inside MuJoCo's GL set-up ends the process at once.
+PlanOutcome PlanWhileSceneLoads(const FlightSetup& setup, std::future<void>* scene) {
+  PlanOutcome plan;
+  try {
+    // the planner knows only the boxes that are not unknown
+    if (setup.HasUnknown()) {
+      FlightSetup known = setup;
+      known.map = KnownMap(setup.map, setup.unknown);
+      plan = PlanFlight(known);
+    } else {
+      plan = PlanFlight(setup);
+    }
+  } catch (const Interrupted& stop) {
+    // Ctrl-C while the scene thread is still inside MuJoCo's GL set-up (mjr_makeContext: about
+    // 0.3 s of texture set-up on a CPU renderer), which nothing can stop: rather than wait for
+    // it, the process ends here, its temporary files removed
+    if (scene->valid() && scene->wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
+      ExitInterrupted(stop.during());
+    }
+    throw;
+  } catch (...) {
+    if (scene->valid()) scene->wait();
+    throw;
+  }
+  // the scene may still be loading (and its renderer compiling its shaders): a Ctrl-C meanwhile
+  // ends the process at once, as above
+  while (scene->valid() && scene->wait_for(kSceneWaitPoll) != std::future_status::ready) {
+    if (StopRequested()) ExitInterrupted("loading the scene");
+  }
+  if (scene->valid()) scene->get();  // rethrows what loading the scene threw
+  return plan;
+}
+
+// The closed loop's parts from the set-up: the vehicle, the controller at its rate, the
+// clearance, the air and the sensors, a mission's goals.
+FlightLoop LoopFor(const FlightSetup& setup, const PlanOutcome& plan, Controller* controller,
+                   const CollisionWorld& world) {
+  FlightLoop loop;
+  loop.vehicle = &setup.vehicle;
+  loop.controller = controller;
+  loop.control_rate = setup.controller.rate;
+  loop.nonfinite_setpoint_from = setup.faults.nonfinite_setpoint_from;
+  loop.inner = setup.controller.inner;
+  loop.clearance = [&world](const Vec3& p) { return world.Clearance(p); };
+  AddAirAndSensors(setup, &loop);
+  for (const Endpoint& goal : plan.via) loop.goals.push_back(goal.used);
+  loop.stop_at_goals = setup.stop_at_goals;
+  return loop;
+}
+
+// Boxes found in flight: the replanner that senses them and replans around them, through the
+// flight's planner (a given path cannot be replanned by itself: RRT* then).
+void AddReplanner(const FlightSetup& setup, const PlanOutcome& plan,
+                  std::optional<Replanner>* replanner, FlightLoop* loop) {
+  std::vector<Vec3> goals = loop->goals;
+  goals.push_back(plan.goal.used);
+  PlannerConfig planner = PlannerConfigFor(setup);
+  if (planner.kind == "waypoints") planner.kind = "rrt_star";
+  replanner->emplace(setup.map, setup.unknown, setup.PlannerCollision(),
+                     setup.TrajectoryCollision(), planner, TrajectoryParamsFor(setup),
+                     setup.sensing, setup.replan, goals, plan.result.path, setup.seed);
+  loop->update_reference = [replanner](double t, double tr, const State& state, int reached,
+                                       const Reference& current) {
+    return (*replanner)->Update(t, tr, state, reached, current);
+  };
+}
+
 }  // namespace
 
 MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
@@ -56,35 +124,9 @@ MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
   std::future<void> scene;
   if (!cull) scene = std::async(std::launch::async, load_scene, std::vector<bool>());
 
-  // plan and solve; the scene thread is joined on every way out
+  // plan and solve while the scene loads
   MissionResult result;
-  try {
-    // the planner knows only the boxes that are not unknown
-    if (setup.HasUnknown()) {
-      FlightSetup known = setup;
-      known.map = KnownMap(setup.map, setup.unknown);
-      result.plan = PlanFlight(known);
-    } else {
-      result.plan = PlanFlight(setup);
-    }
-  } catch (const Interrupted& stop) {
-    // Ctrl-C while the scene thread is still inside MuJoCo's GL set-up (mjr_makeContext: about
-    // 0.3 s of texture set-up on a CPU renderer), which nothing can stop: rather than wait for
-    // it, the process ends here, its temporary files removed
-    if (scene.valid() && scene.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
-      ExitInterrupted(stop.during());
-    }
-    throw;
-  } catch (...) {
-    if (scene.valid()) scene.wait();
-    throw;
-  }
-  // the scene may still be loading (and its renderer compiling its shaders): a Ctrl-C meanwhile
-  // ends the process at once, as above
-  while (scene.valid() && scene.wait_for(kSceneWaitPoll) != std::future_status::ready) {
-    if (StopRequested()) ExitInterrupted("loading the scene");
-  }
-  if (scene.valid()) scene.get();  // rethrows what loading the scene threw
+  result.plan = PlanWhileSceneLoads(setup, &scene);
   const PlanOutcome& plan = result.plan;
   for (MissionObserver* observer : parts.observers) observer->OnPlan(plan);
   if (plan.result.status != PlanStatus::kSolved) {
@@ -119,32 +161,9 @@ MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
     controller = made.get();
   }
   for (MissionObserver* observer : parts.observers) observer->OnFlightStart(*sim, *controller);
-  FlightLoop loop;
-  loop.vehicle = &setup.vehicle;
-  loop.controller = controller;
-  loop.control_rate = setup.controller.rate;
-  loop.nonfinite_setpoint_from = setup.faults.nonfinite_setpoint_from;
-  loop.inner = setup.controller.inner;
-  loop.clearance = [&world](const Vec3& p) { return world.Clearance(p); };
-  AddAirAndSensors(setup, &loop);
-  for (const Endpoint& goal : plan.via) loop.goals.push_back(goal.used);
-  loop.stop_at_goals = setup.stop_at_goals;
-  // boxes found in flight: the replanner senses them and replans around them
+  FlightLoop loop = LoopFor(setup, plan, controller, world);
   std::optional<Replanner> replanner;
-  if (setup.HasUnknown()) {
-    std::vector<Vec3> goals = loop.goals;
-    goals.push_back(plan.goal.used);
-    // the flight's planner replans too; a given path cannot be replanned by itself: RRT* then
-    PlannerConfig planner = PlannerConfigFor(setup);
-    if (planner.kind == "waypoints") planner.kind = "rrt_star";
-    replanner.emplace(setup.map, setup.unknown, setup.PlannerCollision(),
-                      setup.TrajectoryCollision(), planner, TrajectoryParamsFor(setup),
-                      setup.sensing, setup.replan, goals, plan.result.path, setup.seed);
-    loop.update_reference = [&replanner](double t, double tr, const State& state, int reached,
-                                         const Reference& current) {
-      return replanner->Update(t, tr, state, reached, current);
-    };
-  }
+  if (setup.HasUnknown()) AddReplanner(setup, plan, &replanner, &loop);
   if (!parts.observers.empty()) {
     loop.telemetry = [&parts, &replanner](const TelemetrySample& s) {
       for (MissionObserver* observer : parts.observers) {
