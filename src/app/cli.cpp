@@ -357,21 +357,47 @@ int RunModel(const std::string& output, std::ostream& out) {
   return kExitReachedGoal;
 }
 
-}  // namespace
+// The command line: every command, its options, and the run of the one given.
+class Cli {
+ public:
+  Cli() {
+    app.set_version_flag("--version", std::string("aerobox ") + AEROBOX_VERSION + " (MuJoCo " +
+                                          mj_versionString() + ")");
+    app.require_subcommand(1);
+    AddInputCommands();
+    AddFlyCommand();
+    AddCheckAndCompare();
+    AddSweepCommands();
+  }
 
-int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
-  CLI::App app("aerobox: a headless flight sandbox for a Tello-sized quadrotor in MuJoCo",
-               "aerobox");
-  app.set_version_flag("--version", std::string("aerobox ") + AEROBOX_VERSION + " (MuJoCo " +
-                                        mj_versionString() + ")");
-  app.require_subcommand(1);
+  int Run(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
+    try {
+      app.parse(argc, argv);
+    } catch (const CLI::ParseError& error) {
+      const int code = app.exit(error, out, err);
+      return code == 0 ? kExitReachedGoal : kExitBadInput;
+    }
+    try {
+      return Dispatch(argc, argv, out, err);
+    } catch (const Interrupted& stop) {
+      // every output folder is as it was: a run's files are moved in only when it has ended
+      err << "\naerobox: " << stop.what() << "; no output written or changed\n";
+      return kExitInterrupted;
+    } catch (const InputError& error) {
+      err << "aerobox: error: " << error.what() << "\n";
+      return kExitBadInput;
+    } catch (const std::invalid_argument& error) {
+      err << "aerobox: error: " << error.what() << "\n";
+      return kExitBadInput;
+    } catch (const std::exception& error) {
+      err << "aerobox: unexpected error: " << error.what() << "\n";
+      return kExitUnexpected;
+    }
+  }
 
-  std::string input;
-  std::string start_text;
-  std::vector<std::string> goal_texts;
-  std::vector<std::string> set_texts;
-  std::string output;
-  const auto add_input = [&](CLI::App* command) {
+ private:
+  // input, --start, --goal, --set: a command that reads a scenario or a map
+  void AddInput(CLI::App* command) {
     command->add_option("input", input, "scenario.toml or map file (.txt, .json, .csv)")
         ->required();
     command->add_option("--start", start_text, "start X,Y,Z [m], overriding the scenario's");
@@ -387,176 +413,160 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
                      "controller.kind=se3; may be given several times")
         ->expected(1)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  };
-
-  CLI::App* scene = app.add_subcommand("scene", "write the MuJoCo MJCF scene of a map");
-  add_input(scene);
-  scene->add_option("-o,--output", output, "output file (default: standard output)");
-
-  std::string out_dir;
-  std::uint64_t seed = 0;
-  bool seed_given = false;
-  CLI::App* plan = app.add_subcommand(
-      "plan", "plan a path (RRT*) and a trajectory (min-snap); write path.csv, trajectory.csv");
-  add_input(plan);
-  plan->add_option("--out", out_dir, "output folder (default: renders/<scenario name>/)");
-  plan->add_option("--seed", seed, "random seed (default: the scenario's, else 1)")
-      ->each([&seed_given](const std::string&) { seed_given = true; });
-
-  std::vector<std::string> bench_args;
-  CLI::App* bench = app.add_subcommand(
-      "bench", "performance tables (runs aerobox-bench, installed beside aerobox; see its --help)");
-  bench->prefix_command();  // everything after "bench" goes to aerobox-bench as it is
-  bench->set_help_flag();
-  bench->allow_extras();
-
-  bool no_video = false;
-  CLI::App* fly = app.add_subcommand(
-      "fly",
-      "plan, solve and fly a scenario in MuJoCo; write path, trajectory, telemetry, summary");
-  add_input(fly);
-  fly->add_option("--out", out_dir, "output folder (default: renders/<scenario name>/)");
-  fly->add_option("--seed", seed, "random seed (default: the scenario's, else 1)")
-      ->each([&seed_given](const std::string&) { seed_given = true; });
-  fly->add_flag("--no-video", no_video, "do not write video.mp4");
-  bool no_overview = false, no_telemetry = false;
-  fly->add_flag("--no-overview", no_overview, "do not write overview.png");
-  fly->add_flag("--no-telemetry", no_telemetry, "do not write telemetry.csv");
-  bool no_report = false;
-  fly->add_flag("--no-report", no_report,
-                "do not write report.html (the run in 3-D and in charts, for a browser)");
-  FlyOptions fly_options;
-  std::string size = "640x480";
-  fly->add_option("--size", size, "video size WxH, at most 1920x1080")->capture_default_str();
-  fly->add_option("--fps", fly_options.fps, "video frames per second")->capture_default_str();
-  fly->add_option("--playback,--speed", fly_options.speed,
-                  "video playback speed (2: the video shows the flight twice as fast); not the "
-                  "vehicle's speed, which is --max-speed")
-      ->capture_default_str();
-  fly->add_option("--camera", fly_options.camera, "chase, overview or top")->capture_default_str();
-  fly->add_option("--quality", fly_options.quality, "fast or pretty")->capture_default_str();
-  bool quiet = false;
-  fly->add_flag("--quiet", quiet, "no progress line");
-  fly->add_flag("--show-tree", fly_options.show_tree,
-                "draw the RRT* tree: growing in the video's first 3 s, whole in overview.png");
-  std::string trajectory_method;
-  fly->add_option("--trajectory", trajectory_method,
-                  "minsnap (default), a baseline on its waypoints and times: quintic, cubic, "
-                  "septic-full; or given (the scenario's [trajectory] file)");
-  PythonModules python_modules;
-  fly->add_option("--controller", python_modules.controller,
-                  "the controller: a built-in (cascade, se3) or a Python class, file.py:Class "
-                  "(Class(quad_params).update(t, state, flat_output) -> dict, RotorPy's contract)");
-  fly->add_option("--command", python_modules.command,
-                  "which keys of a Python controller's dict fly: auto (the lowest level given), "
-                  "cmd_motor_thrusts, cmd_motor_speeds, cmd_ctbm, cmd_ctbr or cmd_ctatt")
-      ->capture_default_str();
-  fly->add_option("--trajectory-module", python_modules.trajectory,
-                  "a Python trajectory class, file.py:Class: Class(path) with update(t) -> "
-                  "flat_output and a duration [s]");
-  fly->add_option("--planner-module", python_modules.planner,
-                  "a Python planner class, file.py:Class: Class().plan(world, start, goal) -> "
-                  "(N, 3) waypoints [m]");
-  std::string wind_text;
-  double turbulence = -1;
-  fly->add_option("--wind", wind_text,
-                  "mean wind X,Y,Z [m/s], world frame ([wind] mean); brings drag unless [aero] "
-                  "turns it off");
-  fly->add_option("--turbulence", turbulence,
-                  "Dryden turbulence of this standard deviation on every axis [m/s]; 0: none "
-                  "([wind] turbulence and intensity)");
-  fly->add_option("--frames-every", fly_options.frames_every,
-                  "also write frames/frame_NNNNNN.png every this many seconds of flight");
-
-  std::optional<double> max_speed, max_accel;  // unset: the scenario's
-  std::string objective;
-  for (CLI::App* command : {plan, fly}) {
-    command->add_option("--objective", objective,
-                        "the trajectory's time allocation: min-time (default: as fast as the "
-                        "vehicle's limits and margins allow) or snap (scaled to --max-speed and "
-                        "--max-accel) ([trajectory] objective)");
-    command->add_option("--max-speed", max_speed,
-                        "the trajectory's speed limit [m/s] ([trajectory] max_speed)");
-    command->add_option("--max-accel", max_accel,
-                        "the trajectory's acceleration limit [m/s^2] ([trajectory] max_accel)");
-  }
-  fly->add_option("--telemetry-rate", fly_options.telemetry_rate,
-                  "telemetry.csv rows per second [Hz] (default: every control step); must "
-                  "divide the controller's rate");
-
-  CLI::App* check = app.add_subcommand(
-      "check", "validate a map or scenario and print a summary (exit 2 when it is bad)");
-  add_input(check);
-  CLI::App* keys = app.add_subcommand(
-      "keys",
-      "print the reference of scenario keys: unit, default, range and meaning of each (Markdown; "
-      "docs/scenario-keys.md)");
-
-  std::vector<std::string> compare_inputs = {
-      "scenes/window/scenario.toml", "scenes/maze/scenario.toml", "scenes/forest/scenario.toml",
-      "scenes/over_under/scenario.toml"};
-  std::string compare_out = "renders/compare";
-  CLI::App* compare = app.add_subcommand(
-      "compare",
-      "fly min-snap and the baselines (septic-full, quintic, cubic) on the same waypoints and "
-      "times, print one table");
-  compare->add_option("inputs", compare_inputs, "scenarios or maps")->capture_default_str();
-  compare->add_option("--out", compare_out, "folder for the profile CSVs")->capture_default_str();
-
-  std::string sweep_file, shard_text;
-  SweepOptions sweep_options;
-  bool sweep_quiet = false;
-  CLI::App* sweep = app.add_subcommand(
-      "sweep",
-      "fly every run of a sweep file (scenarios x grid x seeds), each in its own process; write "
-      "results.jsonl and a report (see also: sweep merge, sweep slurm)");
-  sweep->add_option("sweep", sweep_file, "sweep.toml");
-  sweep->add_option("--out", sweep_options.out_dir,
-                    "output folder (default: renders/<sweep name>/)");
-  sweep->add_option("-j,--jobs", sweep_options.jobs,
-                    "runs at once (default: SLURM_CPUS_PER_TASK, else the number of cores)");
-  sweep->add_flag("--resume", sweep_options.resume,
-                  "run only the runs that have no result in the output folder");
-  sweep->add_option("--shard", shard_text,
-                    "run the share i/N of the runs (run k belongs to shard k mod N); default: "
-                    "from SLURM_ARRAY_TASK_ID, _MIN and _COUNT when set, else all");
-  sweep->add_flag("--quiet", sweep_quiet, "no progress bar");
-  bool sweep_list = false;
-  sweep->add_flag("--list", sweep_list,
-                  "print the runs (index, id, scenario, seed, grid values) and the shard's share, "
-                  "then stop: nothing runs or is written");
-  std::vector<std::string> merge_folders;
-  std::string merge_out;
-  CLI::App* merge =
-      sweep->add_subcommand("merge", "join the results of a sweep's shards and write its report");
-  merge->add_option("folders", merge_folders, "the shards' output folders")->required();
-  merge->add_option("--out", merge_out, "where the joined results go (default: the first folder)");
-  SlurmOptions slurm_options;
-  CLI::App* slurm = sweep->add_subcommand(
-      "slurm", "write an sbatch script that runs the sweep as a Slurm job array plus a merge job");
-  slurm->add_option("sweep", sweep_file, "sweep.toml")->required();
-  slurm->add_option("--array", slurm_options.array, "tasks in the job array")->required();
-  slurm->add_option("--out", slurm_options.out_dir,
-                    "folder for the script, the logs and the results (default: "
-                    "<sweep name>.slurm/ beside the sweep file)");
-  slurm->add_option("--partition", slurm_options.partition, "Slurm partition");
-  slurm->add_option("--time", slurm_options.time, "time limit per task, e.g. 00:30:00");
-  slurm->add_option("--cpus", slurm_options.cpus, "CPUs per task: runs each task flies at once")
-      ->capture_default_str();
-  slurm->add_flag("--submit", slurm_options.submit, "submit the array and the merge job");
-  slurm->add_flag("--wait", slurm_options.wait, "with --submit: wait until the merge has run");
-
-  CLI::App* model = app.add_subcommand("model", "write the vehicle's MJCF model alone");
-  model->add_option("-o,--output", output, "output file (default: standard output)");
-
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& error) {
-    const int code = app.exit(error, out, err);
-    return code == 0 ? kExitReachedGoal : kExitBadInput;
   }
 
-  try {
+  // scene, plan, bench
+  void AddInputCommands() {
+    scene = app.add_subcommand("scene", "write the MuJoCo MJCF scene of a map");
+    AddInput(scene);
+    scene->add_option("-o,--output", output, "output file (default: standard output)");
+
+    plan = app.add_subcommand(
+        "plan", "plan a path (RRT*) and a trajectory (min-snap); write path.csv, trajectory.csv");
+    AddInput(plan);
+    plan->add_option("--out", out_dir, "output folder (default: renders/<scenario name>/)");
+    plan->add_option("--seed", seed, "random seed (default: the scenario's, else 1)")
+        ->each([this](const std::string&) { seed_given = true; });
+
+    bench = app.add_subcommand(
+        "bench",
+        "performance tables (runs aerobox-bench, installed beside aerobox; see its --help)");
+    bench->prefix_command();  // everything after "bench" goes to aerobox-bench as it is
+    bench->set_help_flag();
+    bench->allow_extras();
+  }
+
+  void AddFlyCommand() {
+    fly = app.add_subcommand(
+        "fly",
+        "plan, solve and fly a scenario in MuJoCo; write path, trajectory, telemetry, summary");
+    AddInput(fly);
+    fly->add_option("--out", out_dir, "output folder (default: renders/<scenario name>/)");
+    fly->add_option("--seed", seed, "random seed (default: the scenario's, else 1)")
+        ->each([this](const std::string&) { seed_given = true; });
+    fly->add_flag("--no-video", no_video, "do not write video.mp4");
+    fly->add_flag("--no-overview", no_overview, "do not write overview.png");
+    fly->add_flag("--no-telemetry", no_telemetry, "do not write telemetry.csv");
+    fly->add_flag("--no-report", no_report,
+                  "do not write report.html (the run in 3-D and in charts, for a browser)");
+    fly->add_option("--size", size, "video size WxH, at most 1920x1080")->capture_default_str();
+    fly->add_option("--fps", fly_options.fps, "video frames per second")->capture_default_str();
+    fly->add_option("--playback,--speed", fly_options.speed,
+                    "video playback speed (2: the video shows the flight twice as fast); not the "
+                    "vehicle's speed, which is --max-speed")
+        ->capture_default_str();
+    fly->add_option("--camera", fly_options.camera, "chase, overview or top")
+        ->capture_default_str();
+    fly->add_option("--quality", fly_options.quality, "fast or pretty")->capture_default_str();
+    fly->add_flag("--quiet", quiet, "no progress line");
+    fly->add_flag("--show-tree", fly_options.show_tree,
+                  "draw the RRT* tree: growing in the video's first 3 s, whole in overview.png");
+    fly->add_option("--trajectory", trajectory_method,
+                    "minsnap (default), a baseline on its waypoints and times: quintic, cubic, "
+                    "septic-full; or given (the scenario's [trajectory] file)");
+    fly->add_option(
+        "--controller", python_modules.controller,
+        "the controller: a built-in (cascade, se3) or a Python class, file.py:Class "
+        "(Class(quad_params).update(t, state, flat_output) -> dict, RotorPy's contract)");
+    fly->add_option("--command", python_modules.command,
+                    "which keys of a Python controller's dict fly: auto (the lowest level given), "
+                    "cmd_motor_thrusts, cmd_motor_speeds, cmd_ctbm, cmd_ctbr or cmd_ctatt")
+        ->capture_default_str();
+    fly->add_option("--trajectory-module", python_modules.trajectory,
+                    "a Python trajectory class, file.py:Class: Class(path) with update(t) -> "
+                    "flat_output and a duration [s]");
+    fly->add_option("--planner-module", python_modules.planner,
+                    "a Python planner class, file.py:Class: Class().plan(world, start, goal) -> "
+                    "(N, 3) waypoints [m]");
+    fly->add_option("--wind", wind_text,
+                    "mean wind X,Y,Z [m/s], world frame ([wind] mean); brings drag unless [aero] "
+                    "turns it off");
+    fly->add_option("--turbulence", turbulence,
+                    "Dryden turbulence of this standard deviation on every axis [m/s]; 0: none "
+                    "([wind] turbulence and intensity)");
+    fly->add_option("--frames-every", fly_options.frames_every,
+                    "also write frames/frame_NNNNNN.png every this many seconds of flight");
+  }
+
+  // the trajectory's caps for plan and fly; check, keys, compare
+  void AddCheckAndCompare() {
+    for (CLI::App* command : {plan, fly}) {
+      command->add_option("--objective", objective,
+                          "the trajectory's time allocation: min-time (default: as fast as the "
+                          "vehicle's limits and margins allow) or snap (scaled to --max-speed and "
+                          "--max-accel) ([trajectory] objective)");
+      command->add_option("--max-speed", max_speed,
+                          "the trajectory's speed limit [m/s] ([trajectory] max_speed)");
+      command->add_option("--max-accel", max_accel,
+                          "the trajectory's acceleration limit [m/s^2] ([trajectory] max_accel)");
+    }
+    fly->add_option("--telemetry-rate", fly_options.telemetry_rate,
+                    "telemetry.csv rows per second [Hz] (default: every control step); must "
+                    "divide the controller's rate");
+
+    check = app.add_subcommand(
+        "check", "validate a map or scenario and print a summary (exit 2 when it is bad)");
+    AddInput(check);
+    keys = app.add_subcommand(
+        "keys",
+        "print the reference of scenario keys: unit, default, range and meaning of each (Markdown; "
+        "docs/scenario-keys.md)");
+
+    compare = app.add_subcommand(
+        "compare",
+        "fly min-snap and the baselines (septic-full, quintic, cubic) on the same waypoints and "
+        "times, print one table");
+    compare->add_option("inputs", compare_inputs, "scenarios or maps")->capture_default_str();
+    compare->add_option("--out", compare_out, "folder for the profile CSVs")->capture_default_str();
+  }
+
+  // sweep, sweep merge, sweep slurm; model
+  void AddSweepCommands() {
+    sweep = app.add_subcommand(
+        "sweep",
+        "fly every run of a sweep file (scenarios x grid x seeds), each in its own process; write "
+        "results.jsonl and a report (see also: sweep merge, sweep slurm)");
+    sweep->add_option("sweep", sweep_file, "sweep.toml");
+    sweep->add_option("--out", sweep_options.out_dir,
+                      "output folder (default: renders/<sweep name>/)");
+    sweep->add_option("-j,--jobs", sweep_options.jobs,
+                      "runs at once (default: SLURM_CPUS_PER_TASK, else the number of cores)");
+    sweep->add_flag("--resume", sweep_options.resume,
+                    "run only the runs that have no result in the output folder");
+    sweep->add_option("--shard", shard_text,
+                      "run the share i/N of the runs (run k belongs to shard k mod N); default: "
+                      "from SLURM_ARRAY_TASK_ID, _MIN and _COUNT when set, else all");
+    sweep->add_flag("--quiet", sweep_quiet, "no progress bar");
+    sweep->add_flag(
+        "--list", sweep_list,
+        "print the runs (index, id, scenario, seed, grid values) and the shard's share, "
+        "then stop: nothing runs or is written");
+    merge =
+        sweep->add_subcommand("merge", "join the results of a sweep's shards and write its report");
+    merge->add_option("folders", merge_folders, "the shards' output folders")->required();
+    merge->add_option("--out", merge_out,
+                      "where the joined results go (default: the first folder)");
+    slurm = sweep->add_subcommand(
+        "slurm",
+        "write an sbatch script that runs the sweep as a Slurm job array plus a merge job");
+    slurm->add_option("sweep", sweep_file, "sweep.toml")->required();
+    slurm->add_option("--array", slurm_options.array, "tasks in the job array")->required();
+    slurm->add_option("--out", slurm_options.out_dir,
+                      "folder for the script, the logs and the results (default: "
+                      "<sweep name>.slurm/ beside the sweep file)");
+    slurm->add_option("--partition", slurm_options.partition, "Slurm partition");
+    slurm->add_option("--time", slurm_options.time, "time limit per task, e.g. 00:30:00");
+    slurm->add_option("--cpus", slurm_options.cpus, "CPUs per task: runs each task flies at once")
+        ->capture_default_str();
+    slurm->add_flag("--submit", slurm_options.submit, "submit the array and the merge job");
+    slurm->add_flag("--wait", slurm_options.wait, "with --submit: wait until the merge has run");
+
+    model = app.add_subcommand("model", "write the vehicle's MJCF model alone");
+    model->add_option("-o,--output", output, "output file (default: standard output)");
+  }
+
+  // The command given, run; a scenario's commands through SetupFromOptions.
+  int Dispatch(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
     if (model->parsed()) return RunModel(output, out);
     if (keys->parsed()) {
       out << ScenarioKeyReference();
@@ -596,6 +606,21 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
       }
       ValidateFlyOptions(fly_options);
     }
+    FlightSetup setup = SetupFromOptions();
+    if (scene->parsed()) return RunScene(setup, output, out);
+    if (plan->parsed()) return RunPlan(setup, out_dir, out, err);
+    if (fly->parsed()) {
+      // the seed in force, so that the command repeats the run
+      if (!seed_given) fly_options.command += " --seed " + std::to_string(setup.seed);
+      return RunFly(setup, fly_options, out, err);
+    }
+    return RunCheck(setup, out);
+  }
+
+  // The set-up the options name: the scenario or map, read with the overrides, then the
+  // command line's own settings, each checked.
+  // --start, --goal, --seed, --set, --wind and --turbulence, checked.
+  SetupOverrides Overrides() const {
     SetupOverrides overrides;
     overrides.start = ParsePointOption(start_text, "--start");
     for (size_t i = 0; i < goal_texts.size(); ++i) {
@@ -620,6 +645,11 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
       }
       overrides.turbulence = turbulence;
     }
+    return overrides;
+  }
+
+  FlightSetup SetupFromOptions() {
+    const SetupOverrides overrides = Overrides();
     FlightSetup setup = LoadFlightSetup(input, overrides);
     ReadInjectedFaults(&setup);
     if (!objective.empty()) {
@@ -675,28 +705,62 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
       }
       UsePythonModules(python_modules, &setup);
     }
-    if (scene->parsed()) return RunScene(setup, output, out);
-    if (plan->parsed()) return RunPlan(setup, out_dir, out, err);
-    if (fly->parsed()) {
-      // the seed in force, so that the command repeats the run
-      if (!seed_given) fly_options.command += " --seed " + std::to_string(setup.seed);
-      return RunFly(setup, fly_options, out, err);
-    }
-    return RunCheck(setup, out);
-  } catch (const Interrupted& stop) {
-    // every output folder is as it was: a run's files are moved in only when it has ended
-    err << "\naerobox: " << stop.what() << "; no output written or changed\n";
-    return kExitInterrupted;
-  } catch (const InputError& error) {
-    err << "aerobox: error: " << error.what() << "\n";
-    return kExitBadInput;
-  } catch (const std::invalid_argument& error) {
-    err << "aerobox: error: " << error.what() << "\n";
-    return kExitBadInput;
-  } catch (const std::exception& error) {
-    err << "aerobox: unexpected error: " << error.what() << "\n";
-    return kExitUnexpected;
+    return setup;
   }
+
+  CLI::App app{"aerobox: a headless flight sandbox for a Tello-sized quadrotor in MuJoCo",
+               "aerobox"};
+  // the commands
+  CLI::App* scene = nullptr;
+  CLI::App* plan = nullptr;
+  CLI::App* bench = nullptr;
+  CLI::App* fly = nullptr;
+  CLI::App* check = nullptr;
+  CLI::App* keys = nullptr;
+  CLI::App* compare = nullptr;
+  CLI::App* sweep = nullptr;
+  CLI::App* merge = nullptr;
+  CLI::App* slurm = nullptr;
+  CLI::App* model = nullptr;
+  // their options' values
+  std::string input;
+  std::string start_text;
+  std::vector<std::string> goal_texts;
+  std::vector<std::string> set_texts;
+  std::string output;
+  std::string out_dir;
+  std::uint64_t seed = 0;
+  bool seed_given = false;
+  bool no_video = false;
+  bool no_overview = false, no_telemetry = false;
+  bool no_report = false;
+  FlyOptions fly_options;
+  std::string size = "640x480";
+  bool quiet = false;
+  std::string trajectory_method;
+  PythonModules python_modules;
+  std::string wind_text;
+  double turbulence = -1;
+  std::optional<double> max_speed, max_accel;  // unset: the scenario's
+  std::string objective;
+  std::vector<std::string> compare_inputs = {
+      "scenes/window/scenario.toml", "scenes/maze/scenario.toml", "scenes/forest/scenario.toml",
+      "scenes/over_under/scenario.toml"};
+  std::string compare_out = "renders/compare";
+  std::string sweep_file, shard_text;
+  SweepOptions sweep_options;
+  bool sweep_quiet = false;
+  bool sweep_list = false;
+  std::vector<std::string> merge_folders;
+  std::string merge_out;
+  SlurmOptions slurm_options;
+};
+
+}  // namespace
+
+int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
+  Cli cli;
+  return cli.Run(argc, argv, out, err);
 }
 
 }  // namespace aerobox
