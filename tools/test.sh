@@ -3,7 +3,7 @@
 # e.g. tools/test.sh -R map   or   tools/test.sh -L scenario
 #   tools/test.sh --sanitize [ctest arguments]   the whole suite under AddressSanitizer and
 #   UndefinedBehaviorSanitizer, in build-sanitize/ (slower; leaks are errors, except the known
-#   ones of the system's graphics libraries listed in tools/lsan.supp)
+#   ones of the system's graphics libraries and the Python interpreter, in tools/lsan.supp)
 set -euo pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 
