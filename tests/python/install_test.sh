@@ -10,7 +10,9 @@ trap 'rm -rf "$prefix"' EXIT
 cmake --install "$build" --prefix "$prefix" > /dev/null
 test -x "$prefix/bin/aerobox"
 cd "$prefix"
-PYTHONPATH="$prefix/lib/python3/dist-packages" PYTHONDONTWRITEBYTECODE=1 "$python" - <<'PY'
+# a sanitizer build's python3 needs its runtime preloaded (tests/CMakeLists.txt): for python3 alone
+LD_PRELOAD="${AEROBOX_PYTHON_PRELOAD:-}" PYTHONPATH="$prefix/lib/python3/dist-packages" \
+  PYTHONDONTWRITEBYTECODE=1 "$python" - <<'PY'
 import os, pydoc, tempfile
 import aerobox
 assert aerobox.__file__.startswith(os.getcwd()), aerobox.__file__
