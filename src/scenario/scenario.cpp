@@ -759,26 +759,28 @@ std::string ScenarioKeyReference() {
   };
   PlanningSettings planning;  // the defaults a scenario starts from
   std::vector<KeyRow> planner = KeyRowsOf(planning.rrt, "planner");
-  planner.insert(planner.begin(),
-                 {{"planner.kind", "", "\"auto\"", "auto, " + Planners().NameList(),
-                   "auto: the lattice for a map wider than 200 m, RRT* otherwise"},
-                  {"planner.clearance", "m", FormatNumber(planning.clearance), "0 to 10",
-                   "kept from obstacles and the bounds, beyond the vehicle's own box"}});
+  planner.insert(
+      planner.begin(),
+      {{"planner.kind", "", "\"" + planning.planner + "\"", "auto, " + Planners().NameList(),
+        "auto: the lattice for a map wider than 200 m, RRT* otherwise"},
+       {"planner.clearance", "m", FormatNumber(planning.clearance), "0 to 10",
+        "kept from obstacles and the bounds, beyond the vehicle's own box"}});
   planner.insert(planner.end(),
                  {{"planner.lattice_spacing", "m", FormatNumber(planning.lattice.spacing),
                    "0.5 to 100", "the lattice's spacing, across and up"},
-                  {"planner.lattice_fallback", "", "true", "true or false",
-                   "a fine lattice searches the map when RRT* finds no path"},
+                  {"planner.lattice_fallback", "", planning.lattice_fallback ? "true" : "false",
+                   "true or false", "a fine lattice searches the map when RRT* finds no path"},
                   {"planner.waypoints", "m", "[]", "points [[x, y, z], ...]",
                    "kind \"waypoints\": the path goes start, these, goal"}});
   std::vector<KeyRow> trajectory = KeyRowsOf(planning.trajectory, "trajectory");
-  trajectory.insert(trajectory.end(),
-                    {{"trajectory.clearance", "m", FormatNumber(planning.trajectory_clearance),
-                      "0 to 10", "kept from obstacles by the trajectory"},
-                     {"trajectory.method", "", "\"minsnap\"", TrajectoryGenerators().NameList(),
-                      "the generator: min-snap (ours), a baseline, or given"},
-                     {"trajectory.file", "", "", "a file name",
-                      "method \"given\": a trajectory.csv to fly, relative to the scenario"}});
+  trajectory.insert(
+      trajectory.end(),
+      {{"trajectory.clearance", "m", FormatNumber(planning.trajectory_clearance), "0 to 10",
+        "kept from obstacles by the trajectory"},
+       {"trajectory.method", "", "\"" + planning.trajectory_method + "\"",
+        TrajectoryGenerators().NameList(), "the generator: min-snap (ours), a baseline, or given"},
+       {"trajectory.file", "", "", "a file name",
+        "method \"given\": a trajectory.csv to fly, relative to the scenario"}});
   std::vector<KeyRow> aero = KeyRows<AeroParams>("aero");
   aero.insert(aero.begin(), {"aero.drag", "", "false", "true or false",
                              "body_drag and rotor_drag at once (read first)"});
