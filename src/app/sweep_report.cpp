@@ -7,13 +7,18 @@
 #include <iomanip>
 #include <sstream>
 
+#include "common/error.h"
 #include "common/quoting.h"
 #include "outputs/files.h"
-#include "outputs/report.h"
+#include "outputs/html_page.h"
 
 namespace aerobox {
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
+
+// sweep_page.html, built in by CMake (aerobox_embed_page): the cells as a table and two charts
+const std::string& SweepPageTemplate();
+
 namespace {
 
 struct Cell {
@@ -101,96 +106,6 @@ std::string BarChart(const std::string& title, const std::string& unit,
       << "<text x=\"" << kLabel + kBar << "\" y=\"" << axis + 16 << "\" text-anchor=\"end\">"
       << Number(top, unit == "%" ? 0 : 2) << " " << XmlEscaped(unit) << "</text>\n</svg>\n";
   return svg.str();
-}
-
-// The sweep's page: its cells as a table and two charts.
-std::string SweepPage() {
-  return R"page(<!DOCTYPE html>
-<html lang="en">
-<head>
-<meta charset="utf-8">
-<title>aerobox sweep: AEROBOX_TITLE</title>
-<style>
-  body { margin: 16px; font: 14px/1.4 system-ui, sans-serif; color: #222; }
-  table { border-collapse: collapse; margin: 10px 0; }
-  th, td { border: 1px solid #ccc; padding: 3px 8px; text-align: right; }
-  th:first-child, td:first-child { text-align: left; }
-  .chart { height: 320px; max-width: 1100px; margin: 12px 0; }
-  .bad { color: #c0392b; }
-</style>
-</head>
-<body>
-<h1>Sweep <span id="name"></span></h1>
-<p id="totals"></p>
-<p>Per cell (a scenario and one value of each grid key, over the seeds): flight time over the
-runs that reached the goal, tracking RMS over the runs that flew; each as the median and the
-90th percentile, and the minimum clearance also as the 10th percentile (90 % of the runs kept at
-least that much).</p>
-<table id="cells"></table>
-<div class="chart"><canvas id="success"></canvas></div>
-<div class="chart"><canvas id="tracking"></canvas></div>
-<pre id="selftest" hidden></pre>
-<script>/*AEROBOX_CHART*/</script>
-<script id="data" type="application/json">/*AEROBOX_DATA*/</script>
-<script>
-'use strict';
-const errors = [];
-window.addEventListener('error', (e) => errors.push(String(e.message)));
-const D = JSON.parse(document.getElementById('data').textContent);
-document.getElementById('name').textContent = D.name;
-document.getElementById('totals').textContent = D.runs + ' runs in ' + D.cells.length +
-    ' cells; ' + D.results + ' have a result, ' + D.reached + ' reached their goal.';
-const shown = (v, d) => (v === null || v === undefined) ? '-' : Number(v).toFixed(d);
-const table = document.getElementById('cells');
-const head = ['scenario', ...D.keys, 'runs', 'reached', 'flight time median / p90 [s]',
-              'tracking RMS median / p90 [m]', 'min clearance median / p90 / p10 [m]',
-              'failures'];
-const row = (cells, tag) => {
-  const tr = document.createElement('tr');
-  for (const c of cells) {
-    const td = document.createElement(tag);
-    td.textContent = c;
-    tr.appendChild(td);
-  }
-  table.appendChild(tr);
-  return tr;
-};
-row(head, 'th');
-const labels = [];
-for (const c of D.cells) {
-  const values = D.keys.map((k) => (k in c.params ? JSON.stringify(c.params[k]) : ''));
-  const rate = c.results ? 100 * c.reached / c.results : null;
-  const tr = row([c.scenario, ...values, c.runs, c.reached + '/' + c.results + ' (' + shown(rate, 0) + ' %)',
-                  shown(c.flight_time[0], 2) + ' / ' + shown(c.flight_time[1], 2),
-                  shown(c.tracking_rms[0], 4) + ' / ' + shown(c.tracking_rms[1], 4),
-                  shown(c.clearance[0], 3) + ' / ' + shown(c.clearance[1], 3) + ' / ' +
-                      shown(c.clearance[2], 3),
-                  c.failures || 'none'], 'td');
-  if (c.reached < c.runs) tr.className = 'bad';
-  labels.push([c.scenario.replace(/\/scenario\.toml$/, ''), ...D.keys.map((k, i) => k + '=' + values[i])].join(', '));
-}
-const options = (title, unit) => ({animation: false, responsive: true, maintainAspectRatio: false,
-  indexAxis: 'y', plugins: {title: {display: true, text: title}}, scales: {x: {title: {display: true, text: unit}, beginAtZero: true}}});
-const charts = [
-  new Chart(document.getElementById('success'), {type: 'bar', data: {labels, datasets: [
-    {label: 'reached their goal [%]', backgroundColor: '#3b75af',
-     data: D.cells.map((c) => (c.results ? 100 * c.reached / c.results : 0))}]},
-    options: options('Runs that reached their goal, per cell', '%')}),
-  new Chart(document.getElementById('tracking'), {type: 'bar', data: {labels, datasets: [
-    {label: 'median [m]', backgroundColor: '#3b75af', data: D.cells.map((c) => c.tracking_rms[0] || 0)},
-    {label: '90th percentile [m]', backgroundColor: '#a9c4de', data: D.cells.map((c) => c.tracking_rms[1] || 0)}]},
-    options: options('Tracking RMS per cell', 'm')}),
-];
-if (/#selftest/.test(location.hash)) {
-  const out = document.getElementById('selftest');
-  out.textContent = JSON.stringify({errors, rows: table.rows.length - 1, charts: charts.length,
-      resources: performance.getEntriesByType('resource').map((e) => e.name)});
-  out.hidden = false;
-}
-</script>
-</body>
-</html>
-)page";
 }
 
 }  // namespace
@@ -337,31 +252,22 @@ std::vector<std::string> WriteSweepReport(const Json& manifest,
   WriteFileAtomically(paths[1], csv.str());
   WriteFileAtomically(
       paths[2], BarChart("Runs that reached their goal, per cell", "%", labels, success, {}, 100));
-  WriteFileAtomically(
-      paths[3], BarChart("Tracking RMS per cell: median, whisker to the 90th percentile", "m",
-                         labels, rms_median, rms_p90, top_rms * 1.1));
+  WriteFileAtomically(paths[3],
+                      BarChart("Tracking RMS per cell: median, whisker to the 90th percentile", "m",
+                               labels, rms_median, rms_p90, top_rms * 1.1));
   // report.html: the table and the charts in a browser, Chart.js copied in
   const Json data = {{"name", name},       {"runs", total}, {"results", with_result},
                      {"reached", reached}, {"keys", keys},  {"cells", page_cells}};
-  std::string chart_script;
-  {
-    std::ifstream in(ReportScripts().chart, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    chart_script = text.str();
+  PageParts parts;
+  parts.title = name;
+  try {
+    parts.scripts = {{"/*AEROBOX_CHART*/", ReadPageScript(ReportScripts().chart)}};
+  } catch (const InputError&) {
+    return paths;  // without Debian's Chart.js: report.md, report.csv and the charts, no page
   }
-  if (!chart_script.empty()) {
-    std::string page = SweepPage();
-    std::string json = data.dump();
-    for (size_t at = json.find("</"); at != std::string::npos; at = json.find("</", at + 2)) {
-      json.replace(at, 2, "<\\/");
-    }
-    page.replace(page.find("AEROBOX_TITLE"), 13, XmlEscaped(name));
-    page.replace(page.find("/*AEROBOX_CHART*/"), 17, chart_script);
-    page.replace(page.find("/*AEROBOX_DATA*/"), 16, json);
-    paths.push_back((out / "report.html").string());
-    WriteFileAtomically(paths.back(), page);
-  }
+  parts.data_json = data.dump();
+  paths.push_back((out / "report.html").string());
+  WriteFileAtomically(paths.back(), FillPage(SweepPageTemplate(), parts));
   return paths;
 }
 

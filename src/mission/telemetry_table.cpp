@@ -45,7 +45,21 @@ TelemetrySchema::TelemetrySchema(std::vector<std::string> controller_columns,
   }
 }
 
-void TelemetrySchema::AddRow(const TelemetrySample& s, CsvTable* table) const {
+int TelemetrySchema::Index(const std::string& name) const {
+  for (size_t i = 0; i < columns_.size(); ++i) {
+    if (columns_[i] == name) return static_cast<int>(i);
+  }
+  throw std::logic_error("telemetry: no column " + name);
+}
+
+void TelemetrySchema::AddRow(const TelemetrySample& sample, CsvTable* table) const {
+  Eigen::VectorXd row = Row(sample);
+  double& clearance = row[kFixedColumns - 1];
+  if (!std::isfinite(clearance)) clearance = -1.0;
+  table->AddRow(row);
+}
+
+Eigen::VectorXd TelemetrySchema::Row(const TelemetrySample& s) const {
   const int controller = static_cast<int>(controller_columns_.size());
   if (s.report.size() != controller_columns_.size()) {
     std::string names;
@@ -61,7 +75,7 @@ void TelemetrySchema::AddRow(const TelemetrySample& s, CsvTable* table) const {
   row.head<kFixedColumns>() << s.t, s.state.p_W, s.state.v_W, q.w(), q.x(), q.y(), q.z(),
       s.state.w_B, s.setpoint.p_W, s.setpoint.v_W, s.setpoint.a_W, s.rotor_thrusts,
       s.position_error, s.inner.thrust, s.inner.rate_setpoint_B, s.inner.moment_B,
-      s.inner.mixer.thrusts, std::isfinite(s.clearance) ? s.clearance : -1.0;
+      s.inner.mixer.thrusts, s.clearance;
   for (int i = 0; i < controller; ++i) row[kFixedColumns + i] = s.report[i];
   int at = kFixedColumns + controller;
   if (extras.goals) row[at++] = s.goal_index;
@@ -79,7 +93,7 @@ void TelemetrySchema::AddRow(const TelemetrySample& s, CsvTable* table) const {
         qe.z(), e.error.head<3>().norm(), e.error.segment<3>(6).norm(), e.nees, e.imu.gyro_B,
         e.imu.accel_B, measured;
   }
-  table->AddRow(row);
+  return row;
 }
 
 }  // namespace aerobox

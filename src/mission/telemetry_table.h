@@ -34,10 +34,15 @@ class TelemetrySchema {
 
   const std::vector<std::string>& columns() const { return columns_; }
   const std::vector<std::string>& controller_columns() const { return controller_columns_; }
+  // Where the column `name` is; throws std::logic_error when the table has no such column.
+  int Index(const std::string& name) const;
   // An empty table with these columns.
   CsvTable Table() const { return CsvTable(columns_); }
-  // One row of `sample`; throws std::logic_error naming the controller's columns when the
-  // sample's report has another number of values (a table made for another controller).
+  // The values of `sample`, one per column, as flown: a clearance with no obstacle in range is
+  // not finite. Throws std::logic_error naming the controller's columns when the sample's
+  // report has another number of values (a table made for another controller).
+  Eigen::VectorXd Row(const TelemetrySample& sample) const;
+  // Row(sample) added to `table`, where a clearance with no obstacle in range is -1.
   void AddRow(const TelemetrySample& sample, CsvTable* table) const;
 
  private:

@@ -1,78 +1,96 @@
 #include "outputs/report.h"
 
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
+#include <nlohmann/json.hpp>
 
-#include "common/error.h"
-#include "common/quoting.h"
 #include "outputs/files.h"
-#include "outputs/report_page.h"
 
 namespace aerobox {
 namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+// report_page.html, built in by CMake (aerobox_embed_page)
+const std::string& ReportPageTemplate();
+
 namespace {
 
 constexpr double kSamplePeriod = 0.01;  // [s]: the page's telemetry, at most 100 rows a second
 
-// Compact JSON numbers: `digits` decimals, trailing zeros dropped; null when not finite.
-class Numbers {
- public:
-  explicit Numbers(std::ostringstream& out) : out_(out) {}
-  void Number(double value, int digits = 4) {
-    if (!std::isfinite(value)) {
-      out_ << "null";
-      return;
-    }
-    char text[48];
-    std::snprintf(text, sizeof(text), "%.*f", digits, value);
-    std::string shown = text;
-    if (shown.find('.') != std::string::npos) {
-      while (shown.back() == '0') shown.pop_back();
-      if (shown.back() == '.') shown.pop_back();
-    }
-    if (shown == "-0") shown = "0";
-    out_ << shown;
-  }
-  void Point(const Vec3& p, int digits = 4) {
-    out_ << "[";
-    for (int i = 0; i < 3; ++i) {
-      if (i) out_ << ",";
-      Number(p[i], digits);
-    }
-    out_ << "]";
-  }
-  void Points(const std::vector<Vec3>& points, int digits = 4) {
-    out_ << "[";
-    for (size_t i = 0; i < points.size(); ++i) {
-      if (i) out_ << ",";
-      Point(points[i], digits);
-    }
-    out_ << "]";
-  }
+// The telemetry.csv columns the page shows (TelemetrySchema's names), and those of a flight in
+// wind or drag.
+const char* const kPageColumns[] = {"t",         "x",  "y",  "z",  "x_des",  "y_des",
+                                    "z_des",     "vx", "vy", "vz", "vx_des", "vy_des",
+                                    "vz_des",    "qw", "qx", "qy", "qz",     "pos_err",
+                                    "clearance", "f1", "f2", "f3", "f4"};
+const char* const kAirColumns[] = {"wind_x", "wind_y", "wind_z"};
 
- private:
-  std::ostringstream& out_;
-};
-
-std::string Script(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in || text.str().empty()) {
-    throw InputError({path, 0}, "report.html",
-                     "the page's script is missing: install libjs-three and libjs-chart.js "
-                     "(tools/setup.sh), or leave the page out with --no-report");
-  }
-  return text.str();
+// A number with `digits` decimals, or null when it is not finite.
+Json Number(double value, int digits = 4) {
+  if (!std::isfinite(value)) return nullptr;
+  const double scale = std::pow(10.0, digits);
+  const double rounded = std::round(value * scale) / scale;
+  return rounded == 0.0 ? 0.0 : rounded;  // never -0
 }
 
-void Replace(std::string* text, const std::string& marker, const std::string& with) {
-  const size_t at = text->find(marker);
-  if (at == std::string::npos) throw std::logic_error("report page: no " + marker);
-  text->replace(at, marker.size(), with);
+Json Point(const Vec3& p, int digits = 4) {
+  return Json::array({Number(p.x(), digits), Number(p.y(), digits), Number(p.z(), digits)});
+}
+
+Json Points(const std::vector<Vec3>& points, int digits = 4) {
+  Json array = Json::array();
+  for (const Vec3& p : points) array.push_back(Point(p, digits));
+  return array;
+}
+
+Json Numbers(const std::vector<double>& values, int digits) {
+  Json array = Json::array();
+  for (const double v : values) array.push_back(Number(v, digits));
+  return array;
+}
+
+// The planned trajectory every 50 ms: positions and speeds.
+Json TrajectoryData(const PlanOutcome& plan) {
+  Json p = Json::array();
+  std::vector<double> speeds;
+  if (plan.trajectory && plan.trajectory->status == TrajectoryStatus::kSolved) {
+    const PiecewiseTrajectory& t = plan.trajectory->trajectory;
+    for (double s = 0; s <= t.duration() + 1e-9; s += 0.05) {
+      p.push_back(Point(t.Evaluate(s, kPosition)));
+      speeds.push_back(t.Evaluate(s, kVelocity).norm());
+    }
+  }
+  return {{"p", p}, {"speed", Numbers(speeds, 3)}};
+}
+
+Json Boxes(const FlightSetup& setup, const std::vector<double>& revealed_at) {
+  Json boxes = Json::array();
+  for (size_t i = 0; i < setup.map.boxes.size(); ++i) {
+    const Box& box = setup.map.boxes[i];
+    Json item = {{"name", box.name},
+                 {"min", Point(box.extent.min)},
+                 {"max", Point(box.extent.max)},
+                 {"rgb", Point(box.rgb, 3)}};
+    if (i < setup.unknown.size() && setup.unknown[i]) {
+      // when the sensor revealed it [s] (-1: never)
+      item["revealed"] = Number(i < revealed_at.size() ? revealed_at[i] : -1.0, 3);
+    }
+    boxes.push_back(item);
+  }
+  return boxes;
+}
+
+Json Replans(const std::vector<ReplanEvent>& replans) {
+  Json array = Json::array();
+  for (const ReplanEvent& r : replans) {
+    array.push_back({{"t", Number(r.t, 3)},
+                     {"trigger", r.trigger},
+                     {"outcome", r.outcome},
+                     {"abandoned", Points(r.abandoned, 3)},
+                     {"replacement", Points(r.replacement, 3)},
+                     {"speeds", Numbers(r.replacement_speeds, 3)}});
+  }
+  return array;
 }
 
 }  // namespace
@@ -81,44 +99,32 @@ ReportOutputs::ReportOutputs(std::string folder, const FlightSetup& setup)
     : folder_(std::move(folder)), setup_(setup) {}
 
 void ReportOutputs::OnPlan(const PlanOutcome& plan) {
-  std::ostringstream out;
-  Numbers n(out);
-  out << "{\"start\":";
-  n.Point(plan.start.used);
-  out << ",\"goal\":";
-  n.Point(plan.goal.used);
-  out << ",\"via\":[";
-  for (size_t i = 0; i < plan.via.size(); ++i) {
-    if (i) out << ",";
-    n.Point(plan.via[i].used);
-  }
-  out << "],\"path\":";
-  n.Points(plan.result.path);
-  out << ",\"trajectory\":{\"p\":[";
-  std::vector<double> speeds;
-  if (plan.trajectory && plan.trajectory->status == TrajectoryStatus::kSolved) {
-    const PiecewiseTrajectory& t = plan.trajectory->trajectory;
-    bool first = true;
-    for (double s = 0; s <= t.duration() + 1e-9; s += 0.05) {
-      if (!first) out << ",";
-      first = false;
-      n.Point(t.Evaluate(s, kPosition));
-      speeds.push_back(t.Evaluate(s, kVelocity).norm());
-    }
-  }
-  out << "],\"speed\":[";
-  for (size_t i = 0; i < speeds.size(); ++i) {
-    if (i) out << ",";
-    n.Number(speeds[i], 3);
-  }
-  out << "]}}";
-  plan_json_ = out.str();
+  Json via = Json::array();
+  for (const auto& v : plan.via) via.push_back(Point(v.used));
+  const Json data = {{"start", Point(plan.start.used)},
+                     {"goal", Point(plan.goal.used)},
+                     {"via", via},
+                     {"path", Points(plan.result.path)},
+                     {"trajectory", TrajectoryData(plan)}};
+  plan_json_ = data.dump();
+}
+
+void ReportOutputs::OnFlightStart(const Simulation&, const Controller& controller) {
+  const TelemetryExtras extras = TelemetryExtrasFor(setup_);
+  schema_ = TelemetrySchema(controller, extras);
+  column_names_.assign(std::begin(kPageColumns), std::end(kPageColumns));
+  if (extras.air)
+    column_names_.insert(column_names_.end(), std::begin(kAirColumns), std::end(kAirColumns));
+  column_index_.clear();
+  for (const std::string& name : column_names_) column_index_.push_back(schema_.Index(name));
+  columns_.assign(column_names_.size(), {});
 }
 
 void ReportOutputs::OnSample(const TelemetrySample& sample) {
   if (sample.t + 1e-9 < next_sample_) return;
   next_sample_ = sample.t + kSamplePeriod;
-  samples_.push_back(sample);
+  const Eigen::VectorXd row = schema_.Row(sample);
+  for (size_t c = 0; c < column_index_.size(); ++c) columns_[c].push_back(row[column_index_[c]]);
 }
 
 void ReportOutputs::OnFlightEnd(const Simulation& sim, const FlightResult& result) {
@@ -135,118 +141,38 @@ void ReportOutputs::OnDiscovery(const std::vector<double>& revealed_at,
 
 std::string ReportOutputs::Write(const std::string& summary_json, const std::string& command,
                                  const ReportScripts& scripts) const {
-  std::ostringstream out;
-  Numbers n(out);
   const Map& map = setup_.map;
-  std::string summary = summary_json;  // never "</script>" inside the page's data
-  for (size_t at = summary.find("</"); at != std::string::npos; at = summary.find("</", at + 3)) {
-    summary.replace(at, 2, "<\\/");
-  }
-  out << "{\"name\":" << JsonQuoted(setup_.name) << ",\"command\":" << JsonQuoted(command)
-      << ",\"summary\":" << summary << ",\"plan\":" << plan_json_ << ",\"bounds\":[";
-  n.Point(map.bounds.min);
-  out << ",";
-  n.Point(map.bounds.max);
-  out << "],\"boxes\":[";
-  for (size_t i = 0; i < map.boxes.size(); ++i) {
-    const Box& box = map.boxes[i];
-    if (i) out << ",";
-    out << "{\"name\":" << JsonQuoted(box.name) << ",\"min\":";
-    n.Point(box.extent.min);
-    out << ",\"max\":";
-    n.Point(box.extent.max);
-    out << ",\"rgb\":";
-    n.Point(box.rgb, 3);
-    const bool unknown = i < setup_.unknown.size() && setup_.unknown[i];
-    if (unknown) {
-      // when the sensor revealed it [s] (-1: never)
-      out << ",\"revealed\":";
-      n.Number(i < revealed_at_.size() ? revealed_at_[i] : -1.0, 3);
-    }
-    out << "}";
-  }
-  out << "],\"replans\":[";
-  for (size_t i = 0; i < replans_.size(); ++i) {
-    if (i) out << ",";
-    out << "{\"t\":";
-    n.Number(replans_[i].t, 3);
-    out << ",\"trigger\":" << JsonQuoted(replans_[i].trigger)
-        << ",\"outcome\":" << JsonQuoted(replans_[i].outcome) << ",\"abandoned\":";
-    n.Points(replans_[i].abandoned, 3);
-    out << ",\"replacement\":";
-    n.Points(replans_[i].replacement, 3);
-    out << ",\"speeds\":[";
-    for (size_t k = 0; k < replans_[i].replacement_speeds.size(); ++k) {
-      if (k) out << ",";
-      n.Number(replans_[i].replacement_speeds[k], 3);
-    }
-    out << "]}";
-  }
-  const QuadParams& v = setup_.vehicle;
-  out << "],\"vehicle\":{\"size\":";
-  n.Point(v.collision_size);
-  out << ",\"max_thrust\":";
-  n.Number(v.MaxRotorThrust());
-  out << "},\"failure\":";
+  Json failure = nullptr;
   if (flown_ && result_.status != FlightStatus::kReachedGoal) {
-    out << "{\"status\":" << JsonQuoted(ToString(result_.status))
-        << ",\"obstacle\":" << JsonQuoted(result_.obstacle) << ",\"t\":";
-    n.Number(result_.time, 3);
-    out << ",\"p\":";
-    n.Point(end_position_);
-    out << "}";
-  } else {
-    out << "null";
+    failure = {{"status", ToString(result_.status)},
+               {"obstacle", result_.obstacle},
+               {"t", Number(result_.time, 3)},
+               {"p", Point(end_position_)}};
   }
-  // the telemetry, one array per column
-  const bool windy = setup_.wind.Enabled();
-  const auto column = [&](const char* name, int digits, auto value) {
-    out << ",\"" << name << "\":[";
-    for (size_t i = 0; i < samples_.size(); ++i) {
-      if (i) out << ",";
-      n.Number(value(samples_[i]), digits);
-    }
-    out << "]";
-  };
-  out << ",\"telemetry\":{\"rate\":" << 1.0 / kSamplePeriod;
-  column("t", 3, [](const TelemetrySample& s) { return s.t; });
-  const char* const axes[] = {"x", "y", "z"};
-  for (int k = 0; k < 3; ++k) {
-    column(axes[k], 4, [k](const TelemetrySample& s) { return s.state.p_W[k]; });
+  Json telemetry = {{"rate", 1.0 / kSamplePeriod}};  // one array per column
+  for (size_t c = 0; c < column_names_.size(); ++c) {
+    telemetry[column_names_[c]] = Numbers(columns_[c], column_names_[c] == "t" ? 3 : 4);
   }
-  for (int k = 0; k < 3; ++k) {
-    const std::string name = std::string(axes[k]) + "_des";
-    column(name.c_str(), 4, [k](const TelemetrySample& s) { return s.setpoint.p_W[k]; });
-  }
-  column("qw", 4, [](const TelemetrySample& s) { return s.state.q_WB.w(); });
-  column("qx", 4, [](const TelemetrySample& s) { return s.state.q_WB.x(); });
-  column("qy", 4, [](const TelemetrySample& s) { return s.state.q_WB.y(); });
-  column("qz", 4, [](const TelemetrySample& s) { return s.state.q_WB.z(); });
-  column("speed", 3, [](const TelemetrySample& s) { return s.state.v_W.norm(); });
-  column("speed_des", 3, [](const TelemetrySample& s) { return s.setpoint.v_W.norm(); });
-  column("error", 4, [](const TelemetrySample& s) { return s.position_error; });
-  column("clearance", 4, [](const TelemetrySample& s) { return s.clearance; });
-  for (int r = 0; r < 4; ++r) {
-    const std::string name = "f" + std::to_string(r + 1);
-    column(name.c_str(), 4, [r](const TelemetrySample& s) { return s.rotor_thrusts[r]; });
-  }
-  if (windy) {
-    for (int k = 0; k < 3; ++k) {
-      const std::string name = std::string("wind_") + axes[k];
-      column(name.c_str(), 3, [k](const TelemetrySample& s) { return s.wind_W[k]; });
-    }
-  }
-  out << "}}";
-
-  // the data last: nothing in it is taken for a marker
-  std::string page = ReportPageTemplate();
-  Replace(&page, "AEROBOX_TITLE", XmlEscaped(setup_.name));
-  Replace(&page, "/*AEROBOX_THREE*/", Script(scripts.three));
-  Replace(&page, "/*AEROBOX_ORBIT_CONTROLS*/", Script(scripts.orbit_controls));
-  Replace(&page, "/*AEROBOX_CHART*/", Script(scripts.chart));
-  Replace(&page, "/*AEROBOX_DATA*/", out.str());
+  const Json data = {{"name", setup_.name},
+                     {"command", command},
+                     {"summary", Json::parse(summary_json)},
+                     {"plan", Json::parse(plan_json_)},
+                     {"bounds", Json::array({Point(map.bounds.min), Point(map.bounds.max)})},
+                     {"boxes", Boxes(setup_, revealed_at_)},
+                     {"replans", Replans(replans_)},
+                     {"vehicle",
+                      {{"size", Point(setup_.vehicle.collision_size)},
+                       {"max_thrust", Number(setup_.vehicle.MaxRotorThrust())}}},
+                     {"failure", failure},
+                     {"telemetry", telemetry}};
+  PageParts parts;
+  parts.title = setup_.name;
+  parts.scripts = {{"/*AEROBOX_THREE*/", ReadPageScript(scripts.three)},
+                   {"/*AEROBOX_ORBIT_CONTROLS*/", ReadPageScript(scripts.orbit_controls)},
+                   {"/*AEROBOX_CHART*/", ReadPageScript(scripts.chart)}};
+  parts.data_json = data.dump(-1, ' ', false, Json::error_handler_t::replace);
   const std::string path = (fs::path(folder_) / "report.html").string();
-  WriteFileAtomically(path, page);
+  WriteFileAtomically(path, FillPage(ReportPageTemplate(), parts));
   return path;
 }
 

@@ -8,15 +8,10 @@
 #include <vector>
 
 #include "mission/mission.h"
+#include "mission/telemetry_table.h"
+#include "outputs/html_page.h"
 
 namespace aerobox {
-
-// Where the page's scripts come from: Debian's libjs-three and libjs-chart.js.
-struct ReportScripts {
-  std::string three = "/usr/share/javascript/three/three.min.js";
-  std::string orbit_controls = "/usr/share/javascript/three/examples/js/controls/OrbitControls.js";
-  std::string chart = "/usr/share/javascript/chart.js/chart.min.js";
-};
 
 // Collects what the page shows as the run goes (telemetry at most every 10 ms of flight), then
 // writes the page with Write.
@@ -24,6 +19,7 @@ class ReportOutputs : public MissionObserver {
  public:
   ReportOutputs(std::string folder, const FlightSetup& setup);
   void OnPlan(const PlanOutcome& plan) override;
+  void OnFlightStart(const Simulation&, const Controller& controller) override;
   void OnSample(const TelemetrySample& sample) override;
   void OnFlightEnd(const Simulation& sim, const FlightResult& result) override;
   void OnDiscovery(const std::vector<double>& revealed_at,
@@ -39,8 +35,11 @@ class ReportOutputs : public MissionObserver {
   std::string folder_;
   const FlightSetup& setup_;
   std::string plan_json_ = "{}";
-  std::vector<TelemetrySample> samples_;
-  double next_sample_ = 0.0;  // [s]
+  TelemetrySchema schema_;                    // the flying controller's
+  std::vector<std::string> column_names_;     // the columns the page shows
+  std::vector<int> column_index_;             // ... in schema_
+  std::vector<std::vector<double>> columns_;  // ... their values every 10 ms
+  double next_sample_ = 0.0;                  // [s]
   std::vector<double> revealed_at_;
   std::vector<ReplanEvent> replans_;
   bool flown_ = false;

@@ -358,7 +358,25 @@ class SimulatorCore {
       result["estimate_rms"] = f.estimate_rms_error;
       result["estimate_max"] = f.estimate_max_error;
     }
+    result["telemetry"] = TelemetryColumns(record);
     return result;
+  }
+
+  // telemetry.csv's columns (TelemetrySchema), one array each: pandas.DataFrame(...) in one
+  // call. A clearance with no obstacle in range is NaN here (-1 in the CSV).
+  static py::dict TelemetryColumns(const FlightRecord& record) {
+    const TelemetrySchema schema(record.controller_columns, TelemetryExtrasFor(*record.setup));
+    const std::vector<std::string>& names = schema.columns();
+    const py::ssize_t n = static_cast<py::ssize_t>(record.samples.size());
+    std::vector<py::array_t<double>> columns;
+    for (size_t c = 0; c < names.size(); ++c) columns.emplace_back(n);
+    for (py::ssize_t i = 0; i < n; ++i) {
+      const Eigen::VectorXd row = schema.Row(record.samples[static_cast<size_t>(i)]);
+      for (size_t c = 0; c < names.size(); ++c) columns[c].mutable_at(i) = row[c];
+    }
+    py::dict table;
+    for (size_t c = 0; c < names.size(); ++c) table[py::str(names[c])] = columns[c];
+    return table;
   }
 
   // a fresh simulation of the scene, at rest at the start

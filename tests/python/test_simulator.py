@@ -174,6 +174,18 @@ class WindowFlights(unittest.TestCase):
             self.assertIn(column, header)
         self.assertEqual(len(rows) - 1, len(result["time"]))
         self.assertTrue(all(len(row.split(",")) == len(header) for row in rows[1:]))
+        # the result's telemetry has the same columns, from the same schema, and is one
+        # pandas.DataFrame call away
+        table = result["telemetry"]
+        self.assertEqual(list(table), header)
+        np.testing.assert_array_equal(table["x"], result["state"]["x"][:, 0])
+        np.testing.assert_array_equal(table["f3"], result["rotor_thrusts"][:, 2])
+        import pandas
+        frame = pandas.DataFrame(table)
+        self.assertEqual(frame.shape, (len(result["time"]), len(header)))
+        np.testing.assert_allclose(frame["vx_sp"].to_numpy(),
+                                   [float(row.split(",")[header.index("vx_sp")])
+                                    for row in rows[1:]], atol=1e-5)
 
 
 class WindAndSensors(unittest.TestCase):

@@ -370,6 +370,8 @@ class Simulator:
         (N, 3) [N], max_wind [m/s]. With sensors on, the controller flies on the estimate:
         estimate {x, v, q, w}, imu {gyro [rad/s], accel [m/s^2]} (N, 3|4), estimate_error (N,)
         [m], nees (N,), estimate_rms, estimate_max [m]. One row per control step.
+        telemetry: telemetry.csv's columns by name (N,) each, in the CSV's order
+        (pandas.DataFrame(result["telemetry"]) is the table; no obstacle in range: NaN).
 
         An exception in controller.update or trajectory.update ends the run with that exception
         (its notes name the time); a command with a missing key, a wrong shape or a non-finite
