@@ -21,6 +21,7 @@
 #include "app/exit_codes.h"
 #include "app/sweep_report.h"
 #include "common/error.h"
+#include "common/progress.h"
 #include "common/quoting.h"
 #include "common/subprocess.h"
 #include "outputs/files.h"
@@ -246,16 +247,16 @@ Json ResultOf(const SweepRun& run, int code, double wall, const fs::path& folder
   return result;
 }
 
-// One line on standard error: a bar on a terminal, else a line at every tenth of the runs.
+// A bar on a terminal (kept when the sweep ends), else a line at every tenth of the runs.
 class SweepProgress {
  public:
   SweepProgress(std::ostream& err, std::string name, size_t total, bool enabled)
-      : err_(err), name_(std::move(name)), total_(total), tty_(isatty(STDERR_FILENO) != 0) {
-    enabled_ = enabled && total > 0;
-  }
-  ~SweepProgress() {
-    if (enabled_ && tty_ && shown_) err_ << "\n" << std::flush;
-  }
+      : display_(err, ProgressDisplay::StderrIsTerminal(), 0.0),
+        name_(std::move(name)),
+        total_(total),
+        enabled_(enabled && total > 0),
+        tty_(ProgressDisplay::StderrIsTerminal()) {}
+  ~SweepProgress() { display_.Keep(); }
 
   void Done(bool failed) {
     ++done_;
@@ -273,17 +274,15 @@ class SweepProgress {
          << std::string(filled, '#') << std::string(kWidth - filled, '.') << "] " << done_ << "/"
          << total_ << " runs, " << failed_ << " failed, " << wall << " s, about " << left
          << " s left";
-    err_ << (tty_ ? "\r" : "") << line.str() << (tty_ ? "   " : "\n") << std::flush;
-    shown_ = true;
+    display_.Show(line.str());
   }
 
  private:
-  std::ostream& err_;
+  ProgressDisplay display_;
   std::string name_;
   size_t total_;
+  bool enabled_;
   bool tty_;
-  bool enabled_ = true;
-  bool shown_ = false;
   size_t done_ = 0;
   size_t failed_ = 0;
   int last_tenth_ = 0;

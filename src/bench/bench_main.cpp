@@ -19,6 +19,7 @@
 #include "bench/solver_comparison.h"
 #include "bench/sweep_benchmark.h"
 #include "common/error.h"
+#include "common/progress.h"
 #include "common/stop.h"
 #include "geometry/collision_world.h"
 #include "mission/mission.h"
@@ -82,6 +83,10 @@ void SpeedTable(const std::string& scenes, const std::string& maps, std::ostream
 int RunBench(const std::string& sections, const std::string& scenes, const std::string& maps,
              const std::string& city, int seeds, double seconds, const std::string& robustness_csv,
              const BenchSize& size, std::ostream& out, std::ostream& err) {
+  // a stage's line on a terminal, rewritten at most ten times a second; in a log, a line at
+  // most every 10 s
+  const bool terminal = ProgressDisplay::StderrIsTerminal();
+  ProgressDisplay progress(err, terminal, terminal ? 0.1 : 10.0);
   const auto wanted = [&sections](const char* name) {
     ThrowIfStopRequested("starting the next section (the tables above are complete)");
     return sections == "all" ||
@@ -89,7 +94,7 @@ int RunBench(const std::string& sections, const std::string& scenes, const std::
   };
   if (wanted("trajectory")) {
     out << "## Minimum snap: Ipopt against the closed-form solve (medians of 5 repetitions)\n\n";
-    CompareMinSnapSolvers(out, err, size);
+    CompareMinSnapSolvers(out, progress, size);
     out << "\n";
   }
   if (wanted("render")) {
@@ -97,14 +102,14 @@ int RunBench(const std::string& sections, const std::string& scenes, const std::
         (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
     out << "## The video path against bare rendering on the window scene (60 frames, medians of "
            "3)\n\n";
-    CompareVideoPath(window, out, err, size);
+    CompareVideoPath(window, out, progress, size);
     out << "\n";
   }
   if (wanted("flight")) {
     const std::string window =
         (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
     out << "## Closed loop against bare mj_step on the window scene (medians of 5 repetitions)\n\n";
-    CompareClosedLoop(window, out, err, size);
+    CompareClosedLoop(window, out, progress, size);
     out << "\n";
   }
   if (wanted("speed")) {
@@ -130,7 +135,7 @@ int RunBench(const std::string& sections, const std::string& scenes, const std::
     params.csv = robustness_csv;
     out << "## Robustness: wind, turbulence, drag and sensors, " << seeds
         << " seeds per map and wind\n\n";
-    RobustnessTable(params, out, err);
+    RobustnessTable(params, out, progress);
     out << "\n";
   }
   if (wanted("replanning")) {
@@ -142,13 +147,13 @@ int RunBench(const std::string& sections, const std::string& scenes, const std::
     }
     out << "## Replanning: 30 % of each map's boxes unknown until seen, " << seeds
         << " seeds per map\n\n";
-    ReplanningTable(scenarios, seeds, 0.3, out, err);
+    ReplanningTable(scenarios, seeds, 0.3, out, progress);
     out << "\n";
   }
   if (wanted("sweep")) {
     out << "## Sweep throughput: aerobox sweep with one and two processes\n\n";
     SweepBenchmark((std::filesystem::path(scenes) / "window" / "scenario.toml").string(), seeds,
-                   out, err);
+                   out, progress);
     out << "\n";
   }
   if (wanted("city")) {
@@ -158,7 +163,7 @@ int RunBench(const std::string& sections, const std::string& scenes, const std::
     } else {
       const std::string window =
           (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
-      CityBenchmark(city, window, size.Count(50, 2), out, err, size);
+      CityBenchmark(city, window, size.Count(50, 2), out, progress, size);
       out << "\n";
     }
   }
@@ -176,7 +181,7 @@ int RunBench(const std::string& sections, const std::string& scenes, const std::
   }
   out << "## RRT*: aerobox against OMPL " << (HaveOmpl() ? "1.5.2" : "(not built)") << ", " << seeds
       << " seeds, " << seconds << " s each\n\n";
-  ComparePlanners(problems, seeds, seconds, out, err);
+  ComparePlanners(problems, seeds, seconds, out, progress);
   return 0;
 }
 

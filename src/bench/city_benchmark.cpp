@@ -44,7 +44,7 @@ double StepsPerSecond(const std::string& xml, const Vec3& at, int repetitions) {
 }  // namespace
 
 void CityBenchmark(const std::string& city, const std::string& window, int queries,
-                   std::ostream& out, std::ostream& progress, const BenchSize& size) {
+                   std::ostream& out, ProgressDisplay& progress, const BenchSize& size) {
   const int repetitions = size.Repetitions(kRepetitions);
   FlightSetup setup = LoadFlightSetup(city, {});
   setup.planning.trajectory.max_speed = 8.0;  // a Tello's top speed
@@ -53,7 +53,7 @@ void CityBenchmark(const std::string& city, const std::string& window, int queri
   const Validity validity{
       [&world](const Vec3& p) { return world.IsPointFree(p); },
       [&world](const Vec3& a, const Vec3& b) { return world.IsSegmentFree(a, b); }};
-  progress << "building the city lattice ..." << std::flush;
+  progress.Show("building the city lattice ...", true);
   const LatticePlanner planner(world.free_bounds(), validity, LatticeParamsFor(setup));
 
   // seeded random free pairs 600-700 m apart (in the plane), 10-60 m above the floor
@@ -71,7 +71,7 @@ void CityBenchmark(const std::string& city, const std::string& window, int queri
     const double d = (a - g).head<2>().norm();
     if (d < 600 || d > 700 || !world.IsPointFree(a) || !world.IsPointFree(g)) continue;
     ++q;
-    progress << "\rcity queries " << q << " / " << queries << "      " << std::flush;
+    progress.Show("city queries " + std::to_string(q) + " / " + std::to_string(queries));
     const PlanResult result = planner.Plan(a, g);
     total += result.stats.planning_time;
     slowest = std::max(slowest, result.stats.planning_time);
@@ -83,12 +83,12 @@ void CityBenchmark(const std::string& city, const std::string& window, int queri
     rechecked += free;
     if (PathLength(result.path) > PathLength(longest)) longest = result.path;
   }
-  progress << "\rthe trajectory along the longest path ..." << std::flush;
+  progress.Show("the trajectory along the longest path ...", true);
   const TrajectoryResult trajectory = TrajectoryAlong(setup, longest);
 
   // MuJoCo: the window scene, the whole city, and the city as a flight along the longest path
   // keeps it (the buildings within 25 m of the trajectory)
-  progress << "\rtiming MuJoCo's steps ...                 " << std::flush;
+  progress.Show("timing MuJoCo's steps ...", true);
   const FlightSetup window_setup = LoadFlightSetup(window, {});
   const double window_rate =
       StepsPerSecond(SceneMjcfFor(window_setup), window_setup.start, repetitions);
@@ -99,7 +99,7 @@ void CityBenchmark(const std::string& city, const std::string& window, int queri
   const std::vector<bool> keep = RouteBoxes(setup.map, route, kRouteMargin);
   const long kept = std::count(keep.begin(), keep.end(), true);
   const double route_rate = StepsPerSecond(SceneMjcfFor(setup, keep), longest.front(), repetitions);
-  progress << "\r" << std::string(50, ' ') << "\r" << std::flush;
+  progress.Clear();
 
   const LatticeStats& lattice = planner.stats();
   out << std::fixed << std::setprecision(3) << "Lattice: " << lattice.nodes << " nodes, "

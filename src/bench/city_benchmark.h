@@ -7,12 +7,13 @@
 #include <string>
 
 #include "bench/benchmark_medians.h"
+#include "common/progress.h"
 
 namespace aerobox {
 
 // `city`: the map file; `window`: the window scenario. Prints markdown tables.
 // A smoke run times MuJoCo once per scene.
 void CityBenchmark(const std::string& city, const std::string& window, int queries,
-                   std::ostream& out, std::ostream& progress, const BenchSize& size);
+                   std::ostream& out, ProgressDisplay& progress, const BenchSize& size);
 
 }  // namespace aerobox

@@ -30,7 +30,7 @@ void RecordControls(const mjModel* m, mjData* d) {
 
 }  // namespace
 
-void CompareClosedLoop(const std::string& scenario, std::ostream& out, std::ostream& progress,
+void CompareClosedLoop(const std::string& scenario, std::ostream& out, ProgressDisplay& progress,
                        const BenchSize& size) {
   const FlightSetup setup = LoadFlightSetup(scenario, {});
   const PlanOutcome plan = PlanFlight(setup);
@@ -126,9 +126,9 @@ void CompareClosedLoop(const std::string& scenario, std::ostream& out, std::ostr
     fly_window(w, true, true, sim, telemetry);
   });
 
-  progress << "timing the closed loop ..." << std::flush;
+  progress.Show("timing the closed loop ...", true);
   const std::map<std::string, double> medians = RunRegisteredBenchmarks();
-  progress << "\r" << std::string(40, ' ') << "\r" << std::flush;
+  progress.Clear();
 
   const double bare = steps_per_pass / medians.at("bare");
   const double cascade = steps_per_pass / medians.at("cascade");

@@ -79,7 +79,7 @@ AnytimeRun RunOurs(const CollisionWorld& world, const PlanningProblem& problem, 
 }
 
 void ComparePlanners(const std::vector<PlanningProblem>& problems, int seeds, double seconds,
-                     std::ostream& out, std::ostream& progress) {
+                     std::ostream& out, ProgressDisplay& progress) {
   const bool ompl = HaveOmpl();
   out << "| map | planner | solved | first solution [ms] | cost @0.2 s [m] | cost @" << seconds
       << " s [m] | simplified [m] | iterations |\n|---|---|---|---|---|---|---|---|\n";
@@ -88,14 +88,14 @@ void ComparePlanners(const std::vector<PlanningProblem>& problems, int seeds, do
     const CollisionWorld world(problem.map, CollisionParams());
     std::vector<AnytimeRun> ours, ompl_default, ompl_informed;
     for (int s = 0; s < seeds; ++s) {
-      progress << "\r" << problem.name << ": run " << s + 1 << "/" << seeds << std::flush;
+      progress.Show(problem.name + ": run " + std::to_string(s + 1) + "/" + std::to_string(seeds));
       ours.push_back(RunOurs(world, problem, seconds, static_cast<std::uint64_t>(s + 1)));
       if (ompl) {
         ompl_default.push_back(RunOmpl(world, problem, seconds, false));
         ompl_informed.push_back(RunOmpl(world, problem, seconds, true));
       }
     }
-    progress << "\r" << std::string(40, ' ') << "\r" << std::flush;
+    progress.Clear();
     const auto row = [&](const char* planner, const Summary& s) {
       out << "| " << problem.name << " | " << planner << " | " << s.solved << "/" << seeds << " | "
           << Show(s.first_ms, 2) << " | " << Show(s.cost_early, 2) << " | " << Show(s.cost_end, 2)

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "common/progress.h"
 #include "geometry/collision_world.h"
 
 namespace aerobox {
@@ -43,6 +44,6 @@ AnytimeRun RunOmpl(const CollisionWorld& world, const PlanningProblem& problem, 
 // table of medians and ratios (ours / OMPL) for time to first solution and cost at 0.2 s and at
 // `seconds`. Progress goes to `progress`.
 void ComparePlanners(const std::vector<PlanningProblem>& problems, int seeds, double seconds,
-                     std::ostream& out, std::ostream& progress);
+                     std::ostream& out, ProgressDisplay& progress);
 
 }  // namespace aerobox

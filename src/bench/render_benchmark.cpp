@@ -20,7 +20,7 @@ constexpr int kFrames = 60;
 
 }  // namespace
 
-void CompareVideoPath(const std::string& scenario, std::ostream& out, std::ostream& progress,
+void CompareVideoPath(const std::string& scenario, std::ostream& out, ProgressDisplay& progress,
                       const BenchSize& size) {
   const int frames = size.Count(kFrames, 4);
   const FlightSetup setup = LoadFlightSetup(scenario, {});
@@ -73,10 +73,10 @@ void CompareVideoPath(const std::string& scenario, std::ostream& out, std::ostre
         ->Repetitions(size.Repetitions(3))
         ->ReportAggregatesOnly(true);
   }
-  progress << "timing the video path ..." << std::flush;
+  progress.Show("timing the video path ...", true);
   const std::map<std::string, double> medians = RunRegisteredBenchmarks();
   std::remove(video.c_str());
-  progress << "\r" << std::string(40, ' ') << "\r" << std::flush;
+  progress.Clear();
 
   out << "| size, preset | render + read back [fps] | + H.264 encode [fps] | ratio |\n"
       << "|---|---|---|---|\n"

@@ -6,11 +6,12 @@
 #include <string>
 
 #include "bench/benchmark_medians.h"
+#include "common/progress.h"
 
 namespace aerobox {
 
 // A smoke run renders 4 frames once per case.
-void CompareVideoPath(const std::string& scenario, std::ostream& out, std::ostream& progress,
+void CompareVideoPath(const std::string& scenario, std::ostream& out, ProgressDisplay& progress,
                       const BenchSize& size);
 
 }  // namespace aerobox

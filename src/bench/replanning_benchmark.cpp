@@ -10,7 +10,7 @@
 namespace aerobox {
 
 void ReplanningTable(const std::vector<std::string>& scenarios, int seeds, double fraction,
-                     std::ostream& out, std::ostream& err) {
+                     std::ostream& out, ProgressDisplay& progress) {
   out << "| map | unknown boxes | reached | contacts | replans | latency median [ms] | latency "
          "worst [ms] | slowest (seed: outcome) | failures (seed: why) "
          "|\n|---|---|---|---|---|---|---|---|---|\n";
@@ -23,7 +23,7 @@ void ReplanningTable(const std::vector<std::string>& scenarios, int seeds, doubl
     std::string failures, slowest;
     double slowest_latency = -1.0;  // [s]
     for (int seed = 1; seed <= seeds; ++seed) {
-      err << "\rreplanning: " << name << ", seed " << seed << "   " << std::flush;
+      progress.Show("replanning: " + name + ", seed " + std::to_string(seed));
       SetupOverrides overrides;
       overrides.seed = static_cast<std::uint64_t>(seed);
       FlightSetup setup = LoadFlightSetup(scenario, overrides);
@@ -67,7 +67,7 @@ void ReplanningTable(const std::vector<std::string>& scenarios, int seeds, doubl
       << (all.empty() ? 0.0 : 1e3 * all.back()) << " ms; " << capped
       << " cut by the wall-time cap (the rest depend on the seed alone)\n"
       << std::defaultfloat;
-  err << "\r" << std::string(60, ' ') << "\r" << std::flush;
+  progress.Clear();
 }
 
 }  // namespace aerobox

@@ -7,9 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "common/progress.h"
+
 namespace aerobox {
 
 void ReplanningTable(const std::vector<std::string>& scenarios, int seeds, double fraction,
-                     std::ostream& out, std::ostream& err);
+                     std::ostream& out, ProgressDisplay& progress);
 
 }  // namespace aerobox

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/number_format.h"
 #include "mission/mission.h"
 #include "scenario/scenario.h"
 
@@ -51,7 +52,7 @@ FlightSetup WindySetup(const std::string& scenario, int seed, double speed) {
 
 }  // namespace
 
-void RobustnessTable(const RobustnessParams& params, std::ostream& out, std::ostream& err) {
+void RobustnessTable(const RobustnessParams& params, std::ostream& out, ProgressDisplay& progress) {
   std::ofstream csv;
   if (!params.csv.empty()) {
     csv.open(params.csv);
@@ -67,8 +68,8 @@ void RobustnessTable(const RobustnessParams& params, std::ostream& out, std::ost
     for (const double speed : params.winds) {
       std::vector<Run> runs;
       for (int seed = 1; seed <= params.seeds; ++seed) {
-        err << "\rrobustness: " << name << ", " << speed << " m/s, seed " << seed << "   "
-            << std::flush;
+        progress.Show("robustness: " + name + ", " + FormatNumber(speed) + " m/s, seed " +
+                      std::to_string(seed));
         const FlightSetup setup = WindySetup(scenario, seed, speed);
         const MissionResult result = RunMission(setup, MissionParts());
         Run run;
@@ -118,7 +119,7 @@ void RobustnessTable(const RobustnessParams& params, std::ostream& out, std::ost
           << std::defaultfloat << std::flush;
     }
   }
-  err << "\r" << std::string(60, ' ') << "\r" << std::flush;
+  progress.Clear();
 }
 
 }  // namespace aerobox

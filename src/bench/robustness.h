@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "common/progress.h"
+
 namespace aerobox {
 
 struct RobustnessParams {
@@ -16,7 +18,7 @@ struct RobustnessParams {
 };
 
 // Prints the Markdown table (per map and wind: success rate, tracking RMS median and worst,
-// minimum clearance, estimate RMS median, the failures by seed); progress goes to `err`.
-void RobustnessTable(const RobustnessParams& params, std::ostream& out, std::ostream& err);
+// minimum clearance, estimate RMS median, the failures by seed); progress goes to `progress`.
+void RobustnessTable(const RobustnessParams& params, std::ostream& out, ProgressDisplay& progress);
 
 }  // namespace aerobox

@@ -45,7 +45,7 @@ MinSnapProblem RandomProblem(int segments, bool corridors) {
 
 }  // namespace
 
-void CompareMinSnapSolvers(std::ostream& out, std::ostream& progress, const BenchSize& size) {
+void CompareMinSnapSolvers(std::ostream& out, ProgressDisplay& progress, const BenchSize& size) {
   std::vector<int> sizes = {5, 10, 20, 50, 100, 200};
   if (size.smoke) sizes = {5, 10};
   std::map<int, std::string> infeasible;
@@ -76,9 +76,9 @@ void CompareMinSnapSolvers(std::ostream& out, std::ostream& progress, const Benc
       });
     }
   }
-  progress << "timing min-snap solvers ..." << std::flush;
+  progress.Show("timing min-snap solvers ...", true);
   const std::map<std::string, double> medians = RunRegisteredBenchmarks();
-  progress << "\r" << std::string(40, ' ') << "\r" << std::flush;
+  progress.Clear();
 
   out << "| segments | closed form [ms] | Ipopt, equalities [ms] | ratio | Ipopt, corridors [ms] "
          "| ratio |\n|---|---|---|---|---|---|\n"

@@ -5,11 +5,12 @@
 #include <ostream>
 
 #include "bench/benchmark_medians.h"
+#include "common/progress.h"
 
 namespace aerobox {
 
 // Prints a markdown table for 5 to 200 segments (5 and 10 in a smoke run); progress goes to
 // `progress`.
-void CompareMinSnapSolvers(std::ostream& out, std::ostream& progress, const BenchSize& size);
+void CompareMinSnapSolvers(std::ostream& out, ProgressDisplay& progress, const BenchSize& size);
 
 }  // namespace aerobox

@@ -39,7 +39,7 @@ double TimeSweep(const std::string& binary, const fs::path& sweep, const fs::pat
 }  // namespace
 
 void SweepBenchmark(const std::string& window_scenario, int seeds, std::ostream& out,
-                    std::ostream& err) {
+                    ProgressDisplay& progress) {
   const fs::path binary = fs::read_symlink("/proc/self/exe").parent_path() / "aerobox";
   if (!fs::exists(binary)) throw std::runtime_error(binary.string() + " is missing");
   const fs::path work =
@@ -50,11 +50,11 @@ void SweepBenchmark(const std::string& window_scenario, int seeds, std::ostream&
                        << "seeds = " << seeds << "\n[grid]\n"
                        << "\"trajectory.max_speed\" = [1.0, 2.0, 3.0, 4.0, 5.0]\n";
   const int runs = 5 * seeds;
-  err << "sweep: " << runs << " runs with -j 1 ..." << std::flush;
+  progress.Show("sweep: " + std::to_string(runs) + " runs with -j 1 ...", true);
   const double one = TimeSweep(binary.string(), sweep, work / "j1", 1);
-  err << "\rsweep: " << runs << " runs with -j 2 ..." << std::flush;
+  progress.Show("sweep: " + std::to_string(runs) + " runs with -j 2 ...", true);
   const double two = TimeSweep(binary.string(), sweep, work / "j2", 2);
-  err << "\r" << std::string(40, ' ') << "\r" << std::flush;
+  progress.Clear();
   fs::remove_all(work);
   out << std::fixed << std::setprecision(2) << "| processes | wall time [s] | runs per second |\n"
       << "|---|---|---|\n"

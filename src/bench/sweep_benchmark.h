@@ -5,9 +5,11 @@
 #include <ostream>
 #include <string>
 
+#include "common/progress.h"
+
 namespace aerobox {
 
 void SweepBenchmark(const std::string& window_scenario, int seeds, std::ostream& out,
-                    std::ostream& err);
+                    ProgressDisplay& progress);
 
 }  // namespace aerobox

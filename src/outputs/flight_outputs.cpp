@@ -261,10 +261,6 @@ void PhaseLines::OnFlightStart(const Simulation&, const Controller&) {
        << std::defaultfloat << std::flush;
 }
 
-ProgressLine::~ProgressLine() {
-  if (written_) err_ << "\r" << std::string(60, ' ') << "\r" << std::flush;
-}
-
 void ProgressLine::OnPlan(const PlanOutcome& plan) {
   if (plan.trajectory) expected_ = plan.trajectory->stats.duration;
   begin_ = std::chrono::steady_clock::now();
@@ -277,10 +273,11 @@ void ProgressLine::OnSample(const TelemetrySample& s) {
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - begin_).count();
   const double left = wall * std::max(0.0, expected_ - s.t) / std::max(s.t, 1e-9);
-  err_ << "\rframe " << frames << "  " << std::fixed << std::setprecision(0)
+  std::ostringstream line;
+  line << "frame " << frames << "  " << std::fixed << std::setprecision(0)
        << frames / std::max(wall, 1e-9) << " fps  flight " << std::setprecision(1) << s.t << " / "
-       << expected_ << " s  about " << std::setprecision(0) << left << " s left   " << std::flush;
-  written_ = true;
+       << expected_ << " s  about " << std::setprecision(0) << left << " s left";
+  display_.Show(line.str());
 }
 
 }  // namespace aerobox

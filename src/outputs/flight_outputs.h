@@ -6,6 +6,7 @@
 #include <ostream>
 #include <string>
 
+#include "common/progress.h"
 #include "mission/mission.h"
 #include "mission/telemetry_table.h"
 #include "render/renderer.h"
@@ -109,17 +110,16 @@ class PhaseLines : public MissionObserver {
 // A progress line on a terminal: frames, frames per second, flight time and time left.
 class ProgressLine : public MissionObserver {
  public:
-  ProgressLine(const RenderOutputs* frames, std::ostream& err) : frames_(frames), err_(err) {}
-  ~ProgressLine() override;
+  ProgressLine(const RenderOutputs* frames, std::ostream& err)
+      : frames_(frames), display_(err, true, 0.0) {}
   void OnPlan(const PlanOutcome& plan) override;
   void OnSample(const TelemetrySample& sample) override;
 
  private:
   const RenderOutputs* frames_;
-  std::ostream& err_;
+  ProgressDisplay display_;
   double expected_ = 0.0;  // [s] of flight
   int shown_ = 0;          // frames when the line was last written
-  bool written_ = false;
   std::chrono::steady_clock::time_point begin_;
 };
 
