@@ -84,6 +84,15 @@ void RangeCheck::Integer(const Field& field, long* value, long low, long high) {
   }
 }
 
+void RangeCheck::Vector(const Field& field, Vec3* value, double low, double high) {
+  for (int i = 0; i < 3; ++i) {
+    if (!((*value)[i] >= low && (*value)[i] <= high)) {
+      throw std::invalid_argument(table_ + "." + field.name + "[" + std::to_string(i) +
+                                  "] out of range: " + FormatNumber((*value)[i]));
+    }
+  }
+}
+
 void RangeCheck::Choice(const Field& field, std::string* value,
                         const std::vector<std::string>& choices) {
   if (std::find(choices.begin(), choices.end(), *value) == choices.end()) {
@@ -107,6 +116,14 @@ void Reference::Integer(const Field& field, long* value, long low, long high) {
 void Reference::Boolean(const Field& field, bool* value) {
   rows.push_back({table_ + "." + field.name, field.unit, *value ? "true" : "false", "true or false",
                   field.meaning});
+}
+
+void Reference::Vector(const Field& field, Vec3* value, double low, double high) {
+  const Vec3& v = *value;
+  rows.push_back(
+      {table_ + "." + field.name, field.unit,
+       "[" + FormatNumber(v.x()) + ", " + FormatNumber(v.y()) + ", " + FormatNumber(v.z()) + "]",
+       "each " + FormatNumber(low) + " to " + FormatNumber(high), field.meaning});
 }
 
 void Reference::Choice(const Field& field, std::string* value,

@@ -18,6 +18,8 @@
 #include <utility>
 #include <vector>
 
+#include "common/types.h"
+
 namespace aerobox {
 
 // One field as every archive sees it.
@@ -37,6 +39,8 @@ class Archive {
   virtual void Integer(const Field& field, long* value, long low, long high) = 0;
   void Integer(const Field& field, int* value, long low, long high);
   virtual void Boolean(const Field& field, bool* value) = 0;
+  // Three numbers, each within [low, high] (given as one number: the same on every axis).
+  virtual void Vector(const Field& field, Vec3* value, double low, double high) = 0;
   // One of `choices` (their order is the one messages and the reference give).
   virtual void Choice(const Field& field, std::string* value,
                       const std::vector<std::string>& choices) = 0;
@@ -133,6 +137,7 @@ class RangeCheck : public Archive {
   void Number(const Field& field, double* value, double low, double high) override;
   void Integer(const Field& field, long* value, long low, long high) override;
   void Boolean(const Field&, bool*) override {}
+  void Vector(const Field& field, Vec3* value, double low, double high) override;
   void Choice(const Field& field, std::string* value,
               const std::vector<std::string>& choices) override;
 
@@ -147,6 +152,7 @@ class Reference : public Archive {
   void Number(const Field& field, double* value, double low, double high) override;
   void Integer(const Field& field, long* value, long low, long high) override;
   void Boolean(const Field& field, bool* value) override;
+  void Vector(const Field& field, Vec3* value, double low, double high) override;
   void Choice(const Field& field, std::string* value,
               const std::vector<std::string>& choices) override;
   std::vector<KeyRow> rows;

@@ -36,26 +36,41 @@ bool WindParams::Enabled() const {
   return mean.squaredNorm() > 0 || !gusts.empty() || turbulence != Turbulence::kNone;
 }
 
+void Gust::Describe(Archive& a) {
+  a.Number({"start", "s", "of flight time"}, &start, 0, 1e5);
+  a.Number({"rise", "s", "from zero to the peak, and from the peak back to zero"}, &rise, 1e-3,
+           1e4);
+  a.Number({"duration", "s", "in all, rise and fall included; at least twice the rise"}, &duration,
+           2e-3, 1e5);
+  a.Number({"peak", "m/s", "the gust's speed at its peak"}, &peak, 0, 50);
+  a.Vector({"direction", "", "world frame; any length but zero"}, &direction, -1e3, 1e3);
+}
+
+void WindParams::Describe(Archive& a) {
+  a.Vector({"mean", "m/s", "the mean wind, world frame"}, &mean, -50, 50);
+  a.Enum({"turbulence", "", "Dryden turbulence (MIL-F-8785C) on the mean wind, or none"},
+         &turbulence, {{Turbulence::kDryden, "dryden"}, {Turbulence::kNone, "none"}});
+  a.Vector({"intensity", "m/s",
+            "the turbulence's standard deviations: along the mean wind, across it, vertical"},
+           &intensity, 0, 20);
+  a.Number({"min_airspeed", "m/s", "below this airspeed the turbulence's filters use this one"},
+           &min_airspeed, 0.01, 100);
+}
+
 void WindParams::Validate() const {
-  const auto fail = [](const std::string& field, const std::string& why) {
-    throw std::invalid_argument("wind." + field + ": " + why);
-  };
-  if (!mean.allFinite()) fail("mean", "not finite");
-  if (!(intensity.array() >= 0).all() || !intensity.allFinite())
-    fail("intensity", "expected standard deviations >= 0 m/s");
-  if (!(min_airspeed > 0 && std::isfinite(min_airspeed))) fail("min_airspeed", "expected > 0");
+  ValidateFields(*this, "wind");
   for (size_t i = 0; i < gusts.size(); ++i) {
     const Gust& g = gusts[i];
-    const std::string field = "gusts[" + std::to_string(i) + "]";
-    if (!(g.start >= 0 && std::isfinite(g.start))) fail(field + ".start", "expected >= 0 s");
-    if (!(g.rise > 0 && std::isfinite(g.rise))) fail(field + ".rise", "expected > 0 s");
-    if (!(g.duration >= 2 * g.rise && std::isfinite(g.duration))) {
-      fail(field + ".duration", "expected at least twice the rise (" + FormatNumber(2 * g.rise) +
-                                    " s), got " + FormatNumber(g.duration));
+    const std::string field = "wind.gusts[" + std::to_string(i) + "]";
+    ValidateFields(g, field);
+    if (!(g.duration >= 2 * g.rise)) {
+      throw std::invalid_argument(field + ".duration: expected at least twice the rise (" +
+                                  FormatNumber(2 * g.rise) + " s), got " +
+                                  FormatNumber(g.duration));
     }
-    if (!(g.peak >= 0 && std::isfinite(g.peak))) fail(field + ".peak", "expected >= 0 m/s");
-    if (!(g.direction.norm() > 1e-9) || !g.direction.allFinite())
-      fail(field + ".direction", "expected a non-zero vector");
+    if (!(g.direction.norm() > 1e-9)) {
+      throw std::invalid_argument(field + ".direction: expected a non-zero vector");
+    }
   }
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "common/schema.h"
 #include "common/types.h"
 
 namespace aerobox {
@@ -23,6 +24,7 @@ struct Gust {
 
   // The gust's wind at flight time t [m/s].
   Vec3 At(double t) const;
+  void Describe(Archive& a);  // [[wind.gusts]] (common/schema.h)
 };
 
 enum class Turbulence { kNone, kDryden };
@@ -40,6 +42,7 @@ struct WindParams {
   double min_airspeed = 1.0;
 
   bool Enabled() const;
+  void Describe(Archive& a);  // [wind] but its gusts (common/schema.h)
   // Throws std::invalid_argument naming the field.
   void Validate() const;
 };

@@ -5,16 +5,6 @@
 #include <string>
 
 namespace aerobox {
-namespace {
-
-void RequireNonNegative(double value, const std::string& field) {
-  if (!(value >= 0 && std::isfinite(value))) {
-    throw std::invalid_argument(field + ": expected a finite number >= 0");
-  }
-}
-
-}  // namespace
-
 Quat RotationVectorToQuat(const Vec3& phi) {
   const double angle = phi.norm();
   if (angle < 1e-12) return Quat(1.0, 0.5 * phi.x(), 0.5 * phi.y(), 0.5 * phi.z()).normalized();
@@ -45,15 +35,7 @@ void ImuParams::Describe(Archive& a) {
            &accel_turn_on_bias, 0, 100);
 }
 
-void ImuParams::Validate() const {
-  if (!(rate > 0 && std::isfinite(rate))) throw std::invalid_argument("imu.rate: expected > 0 Hz");
-  RequireNonNegative(gyro_noise_density, "imu.gyro_noise_density");
-  RequireNonNegative(accel_noise_density, "imu.accel_noise_density");
-  RequireNonNegative(gyro_bias_walk, "imu.gyro_bias_walk");
-  RequireNonNegative(accel_bias_walk, "imu.accel_bias_walk");
-  RequireNonNegative(gyro_turn_on_bias, "imu.gyro_turn_on_bias");
-  RequireNonNegative(accel_turn_on_bias, "imu.accel_turn_on_bias");
-}
+void ImuParams::Validate() const { ValidateFields(*this, "imu"); }
 
 Imu::Imu(const ImuParams& params, std::uint64_t seed) : params_(params), rng_(seed) {
   params_.Validate();
@@ -100,14 +82,20 @@ PositionSensorParams PositionSensorParams::Gps() {
   return p;
 }
 
+void PositionSensorParams::Describe(Archive& a) {
+  a.Enum({"kind", "",
+          "mocap (motion capture: 100 Hz, 1 mm, attitude too) or gps (10 Hz, 0.5 m / 1 m, no "
+          "attitude): the defaults of the other keys, read first"},
+         &kind, {{PositionSensorKind::kMocap, "mocap"}, {PositionSensorKind::kGps, "gps"}});
+  a.Number({"rate", "Hz", "measurements per second (divides the physics rate)"}, &rate, 0.1, 1000);
+  a.Vector({"noise", "m", "1 sigma per world axis"}, &noise, 1e-6, 100);
+  a.Number({"latency", "s", "from the measurement to the estimator"}, &latency, 0, 0.5);
+  a.Number({"attitude_noise", "rad", "1 sigma per body axis; 0: no attitude measured"},
+           &attitude_noise, 0, 1);
+}
+
 void PositionSensorParams::Validate() const {
-  if (!(rate > 0 && std::isfinite(rate)))
-    throw std::invalid_argument("position.rate: expected > 0 Hz");
-  for (int i = 0; i < 3; ++i) RequireNonNegative(noise[i], "position.noise");
-  if (!(noise.minCoeff() > 0)) throw std::invalid_argument("position.noise: expected > 0 m");
-  RequireNonNegative(latency, "position.latency");
-  if (latency > 1.0) throw std::invalid_argument("position.latency: expected at most 1 s");
-  RequireNonNegative(attitude_noise, "position.attitude_noise");
+  ValidateFields(*this, "position");
   if (kind == PositionSensorKind::kGps && attitude_noise > 0) {
     throw std::invalid_argument("position.attitude_noise: a GPS measures no attitude");
   }

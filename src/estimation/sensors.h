@@ -77,7 +77,8 @@ struct PositionSensorParams {
   // A GPS-like receiver: 10 Hz, 0.5 m horizontal and 1 m vertical (RTK-less consumer
   // receivers do worse over minutes; this is their short-term noise), 100 ms, no attitude.
   static PositionSensorParams Gps();
-  void Validate() const;  // throws std::invalid_argument naming the field
+  void Describe(Archive& a);  // [sensors.position] (common/schema.h); `enabled` is the table's
+  void Validate() const;      // throws std::invalid_argument naming the field
 };
 
 struct PoseMeasurement {

@@ -57,6 +57,22 @@ bool Boolean(const toml::node& node, const std::string& file, const std::string&
   return node.as_boolean()->get();
 }
 
+// A 3-vector: an array of 3 numbers, or one number for all three; each within [low, high].
+Vec3 Vector(const toml::node& node, const std::string& file, const std::string& key, double low,
+            double high) {
+  if (node.is_number()) return Vec3::Constant(Number(node, file, key, low, high));
+  const toml::array* array = node.as_array();
+  if (array == nullptr || array->size() != 3) {
+    throw InputError({file, LineOf(node)}, key, "expected a number or an array of 3 numbers");
+  }
+  Vec3 v;
+  for (int i = 0; i < 3; ++i) {
+    v[i] = Number((*array)[static_cast<size_t>(i)], file, key + "[" + std::to_string(i) + "]", low,
+                  high);
+  }
+  return v;
+}
+
 // A table read through a struct's Describe (common/schema.h): each field's key is looked up,
 // read, and checked against the field's range.
 class TomlFields : public Archive {
@@ -85,6 +101,11 @@ class TomlFields : public Archive {
   void Boolean(const Field& field, bool* value) override {
     if (const toml::node* node = table_.get(field.name)) {
       *value = aerobox::Boolean(*node, file_, prefix_ + field.name);
+    }
+  }
+  void Vector(const Field& field, Vec3* value, double low, double high) override {
+    if (const toml::node* node = table_.get(field.name)) {
+      *value = aerobox::Vector(*node, file_, prefix_ + field.name, low, high);
     }
   }
   void Choice(const Field& field, std::string* value,
@@ -221,22 +242,6 @@ void ReadTrajectory(const toml::table& table, const std::string& file, PlanningS
       settings->given_trajectory = ReadTrajectoryCsv(in, path);
     }
   }
-}
-
-// A 3-vector: an array of 3 numbers, or one number for all three; each within [low, high].
-Vec3 Vector(const toml::node& node, const std::string& file, const std::string& key, double low,
-            double high) {
-  if (node.is_number()) return Vec3::Constant(Number(node, file, key, low, high));
-  const toml::array* array = node.as_array();
-  if (array == nullptr || array->size() != 3) {
-    throw InputError({file, LineOf(node)}, key, "expected a number or an array of 3 numbers");
-  }
-  Vec3 v;
-  for (int i = 0; i < 3; ++i) {
-    v[i] = Number((*array)[static_cast<size_t>(i)], file, key + "[" + std::to_string(i) + "]", low,
-                  high);
-  }
-  return v;
 }
 
 std::string Text(const toml::node& node, const std::string& file, const std::string& key) {
@@ -522,60 +527,24 @@ const toml::table* TableOrSwitch(const toml::node& node, const std::string& file
   return table;
 }
 
-// [wind]: mean, turbulence, intensity, min_airspeed and [[wind.gusts]]; checked as a whole at
+// [wind] through its Describe, then [[wind.gusts]] each through Gust's; checked as a whole at
 // the table.
 void ReadWind(const toml::table& table, const std::string& file, int table_line, WindParams* wind) {
-  for (const auto& [key, node] : table) {
-    const std::string name(key.str());
-    const std::string field = "wind." + name;
-    if (name == "mean") {
-      wind->mean = Vector(node, file, field, -50, 50);
-    } else if (name == "turbulence") {
-      const std::string kind = Text(node, file, field);
-      if (kind != "dryden" && kind != "none") {
-        throw InputError({file, LineOf(node)}, field, "expected \"dryden\" or \"none\"");
-      }
-      wind->turbulence = kind == "dryden" ? Turbulence::kDryden : Turbulence::kNone;
-    } else if (name == "intensity") {
-      wind->intensity = Vector(node, file, field, 0, 20);
-    } else if (name == "min_airspeed") {
-      wind->min_airspeed = Number(node, file, field, 0.01, 100);
-    } else if (name == "gusts") {
-      const toml::array* gusts = node.as_array();
-      if (gusts == nullptr) {
-        throw InputError({file, LineOf(node)}, field,
-                         "expected [[wind.gusts]] tables (start, rise, duration, peak, direction)");
-      }
-      wind->gusts.clear();
-      for (size_t i = 0; i < gusts->size(); ++i) {
-        const std::string item = field + "[" + std::to_string(i) + "]";
-        const toml::table* g = (*gusts)[i].as_table();
-        if (g == nullptr) throw InputError({file, LineOf((*gusts)[i])}, item, "expected a table");
-        Gust gust;
-        for (const auto& [gkey, gnode] : *g) {
-          const std::string gname(gkey.str());
-          const std::string gfield = item + "." + gname;
-          if (gname == "start") {
-            gust.start = Number(gnode, file, gfield, 0, 1e5);
-          } else if (gname == "rise") {
-            gust.rise = Number(gnode, file, gfield, 1e-3, 1e4);
-          } else if (gname == "duration") {
-            gust.duration = Number(gnode, file, gfield, 2e-3, 1e5);
-          } else if (gname == "peak") {
-            gust.peak = Number(gnode, file, gfield, 0, 50);
-          } else if (gname == "direction") {
-            gust.direction = Vector(gnode, file, gfield, -1e3, 1e3);
-          } else {
-            throw InputError({file, LineOf(gnode)}, gfield,
-                             "unknown key (expected start, rise, duration, peak or direction)");
-          }
-        }
-        wind->gusts.push_back(gust);
-      }
-    } else {
-      throw InputError({file, LineOf(node)}, field,
-                       "unknown key (expected mean, turbulence, intensity, min_airspeed or "
-                       "gusts)");
+  ReadFields(table, file, "wind.", wind, {}, {"gusts"});
+  if (const toml::node* node = table.get("gusts")) {
+    const toml::array* gusts = node->as_array();
+    if (gusts == nullptr) {
+      throw InputError({file, LineOf(*node)}, "wind.gusts",
+                       "expected [[wind.gusts]] tables (start, rise, duration, peak, direction)");
+    }
+    wind->gusts.clear();
+    for (size_t i = 0; i < gusts->size(); ++i) {
+      const std::string item = "wind.gusts[" + std::to_string(i) + "]";
+      const toml::table* g = (*gusts)[i].as_table();
+      if (g == nullptr) throw InputError({file, LineOf((*gusts)[i])}, item, "expected a table");
+      Gust gust;
+      ReadFields(*g, file, item + ".", &gust);
+      wind->gusts.push_back(gust);
     }
   }
   try {
@@ -597,35 +566,17 @@ void ReadImu(const toml::table& table, const std::string& file, ImuParams* imu) 
   ReadFields(table, file, "sensors.imu.", imu);
 }
 
-// The kind first (its defaults), then the overrides.
+// The kind first (its defaults), then every key through the struct's Describe.
 void ReadPositionSensor(const toml::table& table, const std::string& file,
                         PositionSensorParams* position) {
-  if (const toml::node* kind = table.get("kind")) {
-    const std::string name = Text(*kind, file, "sensors.position.kind");
-    if (name != "mocap" && name != "gps") {
-      throw InputError({file, LineOf(*kind)}, "sensors.position.kind",
-                       "expected \"mocap\" or \"gps\"");
-    }
-    *position = name == "gps" ? PositionSensorParams::Gps() : PositionSensorParams();
+  if (table.get("kind") != nullptr) {
+    PositionSensorParams given;  // read once for its kind
+    ReadFields(table, file, "sensors.position.", &given);
+    *position = given.kind == PositionSensorKind::kGps ? PositionSensorParams::Gps()
+                                                       : PositionSensorParams();
   }
+  ReadFields(table, file, "sensors.position.", position);
   position->enabled = true;
-  for (const auto& [key, node] : table) {
-    const std::string name(key.str());
-    const std::string field = "sensors.position." + name;
-    if (name == "kind") continue;
-    if (name == "rate") {
-      position->rate = Number(node, file, field, 0.1, 1000);
-    } else if (name == "noise") {
-      position->noise = Vector(node, file, field, 1e-6, 100);
-    } else if (name == "latency") {
-      position->latency = Number(node, file, field, 0, 0.5);
-    } else if (name == "attitude_noise") {
-      position->attitude_noise = Number(node, file, field, 0, 1);
-    } else {
-      throw InputError({file, LineOf(node)}, field,
-                       "unknown key (expected kind, rate, noise, latency or attitude_noise)");
-    }
-  }
 }
 
 void ReadEstimator(const toml::table& table, const std::string& file, EstimatorParams* e) {
@@ -789,9 +740,15 @@ std::string ScenarioKeyReference() {
       {"trajectory", "the trajectory along the path", trajectory},
       {"flight", "when a flight has reached its goal, or is lost; the yaw",
        KeyRows<FlightParams>("flight")},
+      {"wind", "the wind: a mean, Dryden turbulence, and gusts ([[wind.gusts]])",
+       KeyRows<WindParams>("wind")},
+      {"[wind.gusts]", "one gust, a table each, in [[wind.gusts]] tables",
+       KeyRows<Gust>("wind.gusts")},
       {"aero", "drag in the air (the wind is [wind])", aero},
       {"sensors.imu", "the IMU (sensors.imu = true: these defaults)",
        KeyRows<ImuParams>("sensors.imu")},
+      {"sensors.position", "the position sensor (sensors.position = true: motion capture)",
+       KeyRows<PositionSensorParams>("sensors.position")},
       {"sensors.estimator", "the error-state Kalman filter the controller flies on",
        KeyRows<EstimatorParams>("sensors.estimator")},
       {"sensing", "the sensor that reveals unknown boxes in flight",
@@ -818,8 +775,8 @@ std::string ScenarioKeyReference() {
          "with `--set TABLE.KEY=VALUE` on the command line, or in a sweep's grid; a value "
          "outside its range is refused naming the file, line and key, and a misspelt key is "
          "refused naming the key it looks like.\n\n"
-      << "Tables not yet on this page ([vehicle], [controller], [wind], [sensors.position], "
-         "[render]) are described in the pages linked from the README.\n";
+      << "Tables not yet on this page ([vehicle], [controller], [render]) are described in the "
+         "pages linked from the README.\n";
   std::vector<Table> all = tables;
   all.insert(all.end(), plugins.begin(), plugins.end());
   for (const Table& table : all) {

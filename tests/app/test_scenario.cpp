@@ -333,6 +333,21 @@ TEST_CASE("[wind], [aero] and [sensors]: errors name the line and the key") {
   CHECK(ScenarioError("map = \"m.txt\"\n[sensors]\nposition = true\n[sensors.imu]\n"
                       "rate = 300\n")
             .find("sensors.imu.rate: 300") != std::string::npos);
+  // the wind's, a gust's and the position sensor's keys come from their Describe: a misspelt
+  // one is named with the key it looks like, a value out of range with the range
+  CHECK(ScenarioError("map = \"m.txt\"\n[wind]\nintensty = 1\n") ==
+        "scenes/x/scenario.toml:3: wind.intensty: unknown key (expected mean, turbulence, "
+        "intensity, min_airspeed or gusts); did you mean intensity?");
+  CHECK(ScenarioError("map = \"m.txt\"\n[wind]\n[[wind.gusts]]\npeak = 60\n") ==
+        "scenes/x/scenario.toml:4: wind.gusts[0].peak: expected a number from 0 to 50");
+  CHECK(ScenarioError("map = \"m.txt\"\n[sensors]\nimu = true\n[sensors.position]\n"
+                      "latncy = 0.1\n") ==
+        "scenes/x/scenario.toml:5: sensors.position.latncy: unknown key (expected kind, rate, "
+        "noise, latency or attitude_noise); did you mean latency?");
+  CHECK(ScenarioError("map = \"m.txt\"\n[sensors]\nimu = true\n[sensors.position]\n"
+                      "noise = [0.1, 0.1, 200]\n") ==
+        "scenes/x/scenario.toml:5: sensors.position.noise[2]: expected a number from 1e-06 to "
+        "100");
   CHECK(ScenarioError("map = \"m.txt\"\n[sensors]\ncamera = true\n") ==
         "scenes/x/scenario.toml:3: sensors.camera: unknown key (expected imu, position or "
         "estimator)");

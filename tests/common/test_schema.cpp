@@ -17,6 +17,7 @@ struct Example {
   bool loud = false;
   Mode mode = Mode::kSlow;
   double angle = 0.5;  // [rad], given in degrees
+  Vec3 wind = Vec3(1, 0, 0.5);  // [m/s]
 
   void Describe(Archive& a) {
     a.Number({"speed", "m/s", "how fast"}, &speed, 0.1, 8);
@@ -25,6 +26,7 @@ struct Example {
     a.Boolean({"loud", "", "whether it speaks"}, &loud);
     a.Enum({"mode", "", "which way"}, &mode, {{Mode::kSlow, "slow"}, {Mode::kFast, "fast"}});
     a.Degrees({"angle", "deg", "how far it turns"}, &angle, 1, 90);
+    a.Vector({"wind", "m/s", "which way it blows"}, &wind, -5, 5);
   }
 };
 
@@ -41,9 +43,13 @@ TEST_CASE("the range check and the key reference come from Describe") {
   e.attempts = 5;
   e.angle = 2.0;  // 115 degrees
   CHECK_THROWS_AS(ValidateFields(e, "example"), std::invalid_argument);
+  e.angle = 0.5;
+  e.wind.z() = 6;
+  CHECK_THROWS_WITH_AS(ValidateFields(e, "example"), "example.wind[2] out of range: 6",
+                       std::invalid_argument);
 
   const std::vector<KeyRow> rows = KeyRows<Example>("example");
-  REQUIRE(rows.size() == 6);
+  REQUIRE(rows.size() == 7);
   CHECK(rows[0].key == "example.speed");
   CHECK(rows[0].unit == "m/s");
   CHECK(rows[0].value == "2");
@@ -52,6 +58,8 @@ TEST_CASE("the range check and the key reference come from Describe") {
   CHECK(rows[4].value == "\"slow\"");
   CHECK(rows[4].range == "\"slow\" or \"fast\"");
   CHECK(rows[5].unit == "deg");
+  CHECK(rows[6].value == "[1, 0, 0.5]");
+  CHECK(rows[6].range == "each -5 to 5");
 }
 
 TEST_CASE("a default in degrees survives the round trip bit for bit") {
