@@ -9,11 +9,59 @@
 
 namespace aerobox {
 
+void ControllerConfig::Describe(Archive& a) {
+  a.Number({"rate", "Hz", "how often the controller runs; divides the 1000 Hz physics rate"}, &rate,
+           1, 1000);
+  a.Boolean({"drag_feedforward", "", "feed the vehicle's own drag forward (on with [aero])"},
+            &drag_feedforward);
+  // the cascade (kind "cascade"): the position and velocity loops
+  PositionControlParams& c = cascade;
+  a.Vector({"position_gain", "1/s", "cascade: velocity setpoint per metre of error"},
+           &c.position_gain, 0, 1e5);
+  a.Vector({"velocity_gain", "1/s", "cascade: acceleration per m/s of error"}, &c.velocity_gain, 0,
+           1e5);
+  a.Vector({"velocity_integral", "1/s^2", "cascade: the velocity error's integral"},
+           &c.velocity_integral, 0, 1e5);
+  a.Vector({"velocity_derivative", "", "cascade: on the measured acceleration"},
+           &c.velocity_derivative, 0, 1e5);
+  a.Vector({"velocity_integral_limit", "m/s^2", "cascade: the integral term's anti-windup clamp"},
+           &c.integral_limit, 0, 1e5);
+  a.Number({"max_speed_horizontal", "m/s", "cascade: the velocity setpoint's limit"},
+           &c.max_speed_horizontal, 0.01, 100);
+  a.Number({"max_speed_vertical", "m/s", "cascade: ... vertical"}, &c.max_speed_vertical, 0.01,
+           100);
+  a.Number({"max_accel_horizontal", "m/s^2", "cascade: the acceleration setpoint's limit"},
+           &c.max_accel_horizontal, 0.01, 100);
+  a.Number({"max_accel_vertical", "m/s^2", "cascade: ... vertical"}, &c.max_accel_vertical, 0.01,
+           100);
+  a.Number({"max_tilt", "rad", "between the thrust and the world's z (cascade and se3)"},
+           &c.max_tilt, 0.01, 1.5);
+  a.Number({"min_thrust_fraction", "", "cascade: of the weight, the least thrust"},
+           &c.min_thrust_fraction, 0.01, 0.99);
+  // the geometric controller (kind "se3")
+  a.Vector({"se3_position_gain", "1/s^2", "se3: on the position error"}, &se3.position_gain, 0,
+           1e5);
+  a.Vector({"se3_velocity_gain", "1/s", "se3: on the velocity error"}, &se3.velocity_gain, 0, 1e5);
+  a.Vector({"se3_attitude_gain", "1/s^2", "se3: on the attitude error"}, &se3.attitude_gain, 0,
+           1e5);
+  a.Vector({"se3_rate_gain", "1/s", "se3: on the body-rate error"}, &se3.rate_gain, 0, 1e5);
+  // the attitude and rate loops below any command that needs them
+  a.Vector({"attitude_gain", "1/s", "rate per radian of error: roll, pitch, yaw"},
+           &inner.attitude.gain, 0, 1e5);
+  a.Vector({"max_rate", "rad/s", "the body-rate setpoint's limits"}, &inner.attitude.max_rate, 0,
+           1e5);
+  a.Number({"yaw_weight", "", "the yaw's share of the attitude error (reduced-attitude control)"},
+           &inner.attitude.yaw_weight, 0.01, 1);
+  a.Vector({"rate_gain", "1/s", "angular acceleration per rad/s of error"}, &inner.rate.gain, 0,
+           1e5);
+  a.Vector({"rate_integral", "1/s^2", "the rate error's integral"}, &inner.rate.integral, 0, 1e5);
+  a.Vector({"rate_derivative", "", "on the measured rate"}, &inner.rate.derivative, 0, 1e5);
+  a.Vector({"rate_integral_limit", "rad/s^2", "the integral term's anti-windup clamp"},
+           &inner.rate.integral_limit, 0, 1e5);
+}
+
 void ControllerConfig::Validate() const {
-  if (!(rate > 0 && rate <= 1000.0 && std::isfinite(rate))) {
-    throw std::invalid_argument("ControllerConfig.rate must be in (0, 1000] Hz, got " +
-                                FormatNumber(rate));
-  }
+  ValidateFields(*this, "controller");
   cascade.Validate();
   se3.Validate();
   inner.Validate();

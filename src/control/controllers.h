@@ -31,6 +31,9 @@ struct ControllerConfig {
   // the defaults it registered (Registry::Register); empty for the built-ins.
   PluginParameters params;
 
+  // The built-in keys of [controller] but `kind` (common/schema.h); a registered controller's
+  // own are in `params`. max_tilt is the cascade's (a scenario gives se3 the same).
+  void Describe(Archive& a);
   // Throws std::invalid_argument naming the field.
   void Validate() const;
 };

@@ -77,17 +77,20 @@ Vec3 Vector(const toml::node& node, const std::string& file, const std::string& 
 // read, and checked against the field's range.
 class TomlFields : public Archive {
  public:
-  TomlFields(const toml::table& table, std::string file, std::string prefix)
-      : table_(table), file_(std::move(file)), prefix_(std::move(prefix)) {}
+  // Keys in `skip` belong to another reader (a registered plug-in's own, of the same name as a
+  // built-in's field): this one leaves them alone.
+  TomlFields(const toml::table& table, std::string file, std::string prefix,
+             std::vector<std::string> skip = {})
+      : table_(table), file_(std::move(file)), prefix_(std::move(prefix)), skip_(std::move(skip)) {}
   using Archive::Integer;
 
   void Number(const Field& field, double* value, double low, double high) override {
-    if (const toml::node* node = table_.get(field.name)) {
+    if (const toml::node* node = Find(field)) {
       *value = aerobox::Number(*node, file_, prefix_ + field.name, low, high);
     }
   }
   void Integer(const Field& field, long* value, long low, long high) override {
-    const toml::node* node = table_.get(field.name);
+    const toml::node* node = Find(field);
     if (node == nullptr) return;
     const std::optional<double> number = node->is_number() ? node->value<double>() : std::nullopt;
     if (!number || !(*number >= static_cast<double>(low) && *number <= static_cast<double>(high)) ||
@@ -99,18 +102,18 @@ class TomlFields : public Archive {
     *value = static_cast<long>(*number);
   }
   void Boolean(const Field& field, bool* value) override {
-    if (const toml::node* node = table_.get(field.name)) {
+    if (const toml::node* node = Find(field)) {
       *value = aerobox::Boolean(*node, file_, prefix_ + field.name);
     }
   }
   void Vector(const Field& field, Vec3* value, double low, double high) override {
-    if (const toml::node* node = table_.get(field.name)) {
+    if (const toml::node* node = Find(field)) {
       *value = aerobox::Vector(*node, file_, prefix_ + field.name, low, high);
     }
   }
   void Choice(const Field& field, std::string* value,
               const std::vector<std::string>& choices) override {
-    const toml::node* node = table_.get(field.name);
+    const toml::node* node = Find(field);
     if (node == nullptr) return;
     const std::optional<std::string> text = node->value<std::string>();
     if (!text || std::find(choices.begin(), choices.end(), *text) == choices.end()) {
@@ -123,30 +126,48 @@ class TomlFields : public Archive {
   }
 
  private:
+  const toml::node* Find(const Field& field) const {
+    if (std::find(skip_.begin(), skip_.end(), field.name) != skip_.end()) return nullptr;
+    return table_.get(field.name);
+  }
+
   const toml::table& table_;
   std::string file_;
   std::string prefix_;
+  std::vector<std::string> skip_;
 };
 
-// Reads `table` into `params` through its Describe. Keys read by hand around it are `before`
-// and `after` (in the order the unknown-key message lists them); any other key is refused,
-// naming the field it looks like a misspelling of.
+// The keys of a table that are not its struct's fields: read by hand before or after it, or a
+// registered kind's own (which win over a built-in field of the same name).
+struct OtherKeys {
+  std::vector<std::string> before, after;
+  std::vector<std::string> plugin;  // the kind's own keys
+  std::string kind;                 // which kind: controller kind "mine"
+};
+
+// Reads `table` into `params` through its Describe. Any key that is neither a field nor one of
+// `other` is refused, listing the keys (in the order: before, the fields, after; then the
+// kind's own) and naming the one it looks like a misspelling of.
 template <typename Params>
 void ReadFields(const toml::table& table, const std::string& file, const std::string& prefix,
-                Params* params, const std::vector<std::string>& before = {},
-                const std::vector<std::string>& after = {}) {
-  std::vector<std::string> names = before;
+                Params* params, const OtherKeys& other = {}) {
+  std::vector<std::string> names = other.before;
   for (const KeyRow& row : KeyRows<Params>("")) names.push_back(row.key.substr(1));
-  names.insert(names.end(), after.begin(), after.end());
+  names.insert(names.end(), other.after.begin(), other.after.end());
+  std::vector<std::string> all = names;
+  all.insert(all.end(), other.plugin.begin(), other.plugin.end());
   for (const auto& [key, node] : table) {
     const std::string name(key.str());
-    if (std::find(names.begin(), names.end(), name) != names.end()) continue;
-    const std::string nearest = NearestName(name, names);
+    if (std::find(all.begin(), all.end(), name) != all.end()) continue;
+    std::string own;
+    for (const std::string& key_name : other.plugin) own += (own.empty() ? "" : ", ") + key_name;
+    const std::string nearest = NearestName(name, all);
     throw InputError({file, LineOf(node)}, prefix + name,
-                     "unknown key (expected " + ListOfNames(names) + ")" +
+                     "unknown key (expected " + ListOfNames(names) +
+                         (own.empty() ? "" : "; " + other.kind + " adds " + own) + ")" +
                          (nearest.empty() ? "" : "; did you mean " + nearest + "?"));
   }
-  TomlFields reader(table, file, prefix);
+  TomlFields reader(table, file, prefix, other.plugin);
   params->Describe(reader);
 }
 
@@ -156,17 +177,6 @@ void ReadPluginKeys(const toml::table& table, const std::string& file, const std
                     PluginParameters* params) {
   TomlFields reader(table, file, prefix);
   params->Describe(reader);
-}
-
-bool Contains(const std::vector<std::string>& names, const std::string& name) {
-  return std::find(names.begin(), names.end(), name) != names.end();
-}
-
-// ", own_a, own_b": a plug-in's keys for an unknown-key message.
-std::string MoreKeys(const std::vector<std::string>& names) {
-  std::string text;
-  for (const std::string& name : names) text += ", " + name;
-  return text;
 }
 
 void ReadPlanner(const toml::table& table, const std::string& file, PlanningSettings* settings) {
@@ -181,10 +191,11 @@ void ReadPlanner(const toml::table& table, const std::string& file, PlanningSett
     settings->planner_params = Planners().Parameters(*value);
   }
   // RRT*'s keys through its Describe; these by hand; then the plug-in's own
-  std::vector<std::string> after = {"lattice_spacing", "lattice_fallback", "waypoints"};
-  const std::vector<std::string> own = FieldNames(settings->planner_params);
-  after.insert(after.end(), own.begin(), own.end());
-  ReadFields(table, file, "planner.", &settings->rrt, {"kind", "clearance"}, after);
+  ReadFields(table, file, "planner.", &settings->rrt,
+             {{"kind", "clearance"},
+              {"lattice_spacing", "lattice_fallback", "waypoints"},
+              FieldNames(settings->planner_params),
+              "planner kind \"" + settings->planner + "\""});
   for (const auto& [key, node] : table) {
     const std::string name(key.str());
     const std::string field = "planner." + name;
@@ -213,8 +224,8 @@ void ReadPlanner(const toml::table& table, const std::string& file, PlanningSett
 
 void ReadTrajectory(const toml::table& table, const std::string& file, PlanningSettings* settings) {
   // the trajectory's keys through its Describe; these by hand
-  ReadFields(table, file, "trajectory.", &settings->trajectory, {},
-             {"clearance", "method", "file"});
+  ReadFields(table, file, "trajectory.", &settings->trajectory,
+             {{}, {"clearance", "method", "file"}, {}, ""});
   for (const auto& [key, node] : table) {
     const std::string name(key.str());
     const std::string field = "trajectory." + name;
@@ -356,39 +367,6 @@ void ReadVehicle(const toml::table& table, const std::string& file, int table_li
 
 void ReadController(const toml::table& table, const std::string& file, int table_line,
                     ControllerConfig* config) {
-  PositionControlParams& cascade = config->cascade;
-  Se3Params& se3 = config->se3;
-  InnerLoopParams& inner = config->inner;
-  // every key but `kind`: gains (one number or three, >= 0) and bounded numbers
-  const std::pair<const char*, Vec3*> gains[] = {
-      {"position_gain", &cascade.position_gain},
-      {"velocity_gain", &cascade.velocity_gain},
-      {"velocity_integral", &cascade.velocity_integral},
-      {"velocity_derivative", &cascade.velocity_derivative},
-      {"velocity_integral_limit", &cascade.integral_limit},
-      {"se3_position_gain", &se3.position_gain},
-      {"se3_velocity_gain", &se3.velocity_gain},
-      {"se3_attitude_gain", &se3.attitude_gain},
-      {"se3_rate_gain", &se3.rate_gain},
-      {"attitude_gain", &inner.attitude.gain},
-      {"max_rate", &inner.attitude.max_rate},
-      {"rate_gain", &inner.rate.gain},
-      {"rate_integral", &inner.rate.integral},
-      {"rate_derivative", &inner.rate.derivative},
-      {"rate_integral_limit", &inner.rate.integral_limit}};
-  struct Bounded {
-    const char* key;
-    double* target;
-    double low, high;
-  };
-  const Bounded numbers[] = {{"rate", &config->rate, 1, 1000},
-                             {"max_speed_horizontal", &cascade.max_speed_horizontal, 0.01, 100},
-                             {"max_speed_vertical", &cascade.max_speed_vertical, 0.01, 100},
-                             {"max_accel_horizontal", &cascade.max_accel_horizontal, 0.01, 100},
-                             {"max_accel_vertical", &cascade.max_accel_vertical, 0.01, 100},
-                             {"max_tilt", &cascade.max_tilt, 0.01, 1.5},
-                             {"min_thrust_fraction", &cascade.min_thrust_fraction, 0.01, 0.99},
-                             {"yaw_weight", &inner.attitude.yaw_weight, 0.01, 1}};
   // the kind first, whatever the table's order: a registered controller brings its own keys
   if (const toml::node* kind = table.get("kind")) {
     config->kind = Text(*kind, file, "controller.kind");
@@ -398,35 +376,10 @@ void ReadController(const toml::table& table, const std::string& file, int table
     }
     config->params = Controllers().Parameters(config->kind);
   }
-  const std::vector<std::string> own = FieldNames(config->params);
-  for (const auto& [key, node] : table) {
-    const std::string name(key.str());
-    const std::string field = "controller." + name;
-    if (name == "kind" || Contains(own, name)) continue;  // before, or by the plug-in after
-    if (name == "drag_feedforward") {
-      config->drag_feedforward = Boolean(node, file, field);
-      continue;
-    }
-    bool known = false;
-    for (const auto& [gain_key, target] : gains) {
-      if (name != gain_key) continue;
-      *target = Vector(node, file, field, 0, 1e5);
-      known = true;
-    }
-    for (const Bounded& number : numbers) {
-      if (name != number.key) continue;
-      *number.target = Number(node, file, field, number.low, number.high);
-      known = true;
-    }
-    if (name == "max_tilt") se3.max_tilt = cascade.max_tilt;  // one tilt limit for both
-    if (!known) {
-      std::string keys = "kind, drag_feedforward";
-      for (const auto& gain : gains) keys += std::string(", ") + gain.first;
-      for (const Bounded& number : numbers) keys += std::string(", ") + number.key;
-      throw InputError({file, LineOf(node)}, field,
-                       "unknown key (expected " + keys + MoreKeys(own) + ")");
-    }
-  }
+  ReadFields(
+      table, file, "controller.", config,
+      {{"kind"}, {}, FieldNames(config->params), "controller kind \"" + config->kind + "\""});
+  if (table.get("max_tilt") != nullptr) config->se3.max_tilt = config->cascade.max_tilt;
   ReadPluginKeys(table, file, "controller.", &config->params);
   // the rate must divide the 1 kHz physics rate
   const double steps = 1000.0 / config->rate;
@@ -530,7 +483,7 @@ const toml::table* TableOrSwitch(const toml::node& node, const std::string& file
 // [wind] through its Describe, then [[wind.gusts]] each through Gust's; checked as a whole at
 // the table.
 void ReadWind(const toml::table& table, const std::string& file, int table_line, WindParams* wind) {
-  ReadFields(table, file, "wind.", wind, {}, {"gusts"});
+  ReadFields(table, file, "wind.", wind, {{}, {"gusts"}, {}, ""});
   if (const toml::node* node = table.get("gusts")) {
     const toml::array* gusts = node->as_array();
     if (gusts == nullptr) {
@@ -559,7 +512,7 @@ void ReadAero(const toml::table& table, const std::string& file, AeroParams* aer
   if (const toml::node* both = table.get("drag")) {
     aero->body_drag = aero->rotor_drag = Boolean(*both, file, "aero.drag");
   }
-  ReadFields(table, file, "aero.", aero, {"drag"});
+  ReadFields(table, file, "aero.", aero, {{"drag"}, {}, {}, ""});
 }
 
 void ReadImu(const toml::table& table, const std::string& file, ImuParams* imu) {
@@ -732,12 +685,19 @@ std::string ScenarioKeyReference() {
         TrajectoryGenerators().NameList(), "the generator: min-snap (ours), a baseline, or given"},
        {"trajectory.file", "", "", "a file name",
         "method \"given\": a trajectory.csv to fly, relative to the scenario"}});
+  const ControllerConfig control;  // the defaults a scenario starts from
+  std::vector<KeyRow> controller = KeyRows<ControllerConfig>("controller");
+  controller.insert(controller.begin(),
+                    {"controller.kind", "", "\"" + control.kind + "\"", Controllers().NameList(),
+                     "the controller: the built-ins (cascade, geometric se3) or a registered one"});
   std::vector<KeyRow> aero = KeyRows<AeroParams>("aero");
   aero.insert(aero.begin(), {"aero.drag", "", "false", "true or false",
                              "body_drag and rotor_drag at once (read first)"});
   const std::vector<Table> tables = {
       {"planner", "the path: RRT*, the lattice, given waypoints, or a registered planner", planner},
       {"trajectory", "the trajectory along the path", trajectory},
+      {"controller", "the controller and the loops below it; a registered one's own keys below",
+       controller},
       {"flight", "when a flight has reached its goal, or is lost; the yaw",
        KeyRows<FlightParams>("flight")},
       {"wind", "the wind: a mean, Dryden turbulence, and gusts ([[wind.gusts]])",
@@ -775,7 +735,7 @@ std::string ScenarioKeyReference() {
          "with `--set TABLE.KEY=VALUE` on the command line, or in a sweep's grid; a value "
          "outside its range is refused naming the file, line and key, and a misspelt key is "
          "refused naming the key it looks like.\n\n"
-      << "Tables not yet on this page ([vehicle], [controller], [render]) are described in the "
+      << "Tables not yet on this page ([vehicle], [render]) are described in the "
          "pages linked from the README.\n";
   std::vector<Table> all = tables;
   all.insert(all.end(), plugins.begin(), plugins.end());

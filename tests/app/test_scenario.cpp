@@ -455,3 +455,43 @@ TEST_CASE("unknown boxes, [sensing] and [replan]: the keys and their errors") {
 }
 
 }  // namespace aerobox
+
+namespace aerobox {
+namespace {
+
+// A registered controller whose own key has a built-in's name.
+struct SameNameGains {
+  double position_gain = 1.0;  // [1/s]
+  void Describe(Archive& a) {
+    a.Number({"position_gain", "1/s", "its own"}, &position_gain, 0, 100);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("[controller]: a registered kind's own key wins over a built-in field of its name") {
+  if (Controllers().Find("test_same_name") == nullptr) {
+    Controllers().Register(
+        "test_same_name",
+        [](const ControllerConfig& config, const QuadParams& vehicle) {
+          return Controllers().Find("cascade")->operator()(config, vehicle);
+        },
+        PluginParameters::Of(SameNameGains()));
+  }
+  std::istringstream in(
+      "map = \"m.txt\"\n[controller]\nposition_gain = 7\n"
+      "kind = \"test_same_name\"\nattitude_gain = 3\n");
+  const Scenario s = ReadScenario(in, "scenes/x/scenario.toml");
+  CHECK(s.controller.params.Get<SameNameGains>().position_gain == 7.0);
+  CHECK(s.controller.cascade.position_gain == PositionControlParams().position_gain);
+  CHECK(s.controller.inner.attitude.gain == Vec3::Constant(3.0));  // the built-ins' still apply
+  CHECK(
+      ScenarioError("map = \"m.txt\"\n[controller]\nkind = \"test_same_name\"\nposition_gian = 7\n")
+          .find("(expected kind, rate, drag_feedforward, position_gain, ") != std::string::npos);
+  CHECK(
+      ScenarioError("map = \"m.txt\"\n[controller]\nkind = \"test_same_name\"\nposition_gian = 7\n")
+          .find("rate_integral_limit; controller kind \"test_same_name\" adds position_gain); did "
+                "you mean position_gain?") != std::string::npos);
+}
+
+}  // namespace aerobox
