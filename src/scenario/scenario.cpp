@@ -262,12 +262,6 @@ std::string Text(const toml::node& node, const std::string& file, const std::str
 }
 
 // The names for an "unknown key" message.
-std::string KeyList(std::initializer_list<const char*> keys) {
-  std::string text;
-  for (const char* key : keys) text += (text.empty() ? "" : ", ") + std::string(key);
-  return text;
-}
-
 // [vehicle]: the kind first (whatever the table's order), then overrides of its values, then
 // one check of the whole; a vehicle that is not physical is reported at the table.
 void ReadVehicle(const toml::table& table, const std::string& file, int table_line,
@@ -283,19 +277,22 @@ void ReadVehicle(const toml::table& table, const std::string& file, int table_li
     scenario->vehicle = *builtin;
   }
   QuadParams& v = scenario->vehicle;
+  // the numbers through QuadParams' Describe; the rotors' arrays and RotorPy's names by hand
+  ReadFields(table, file, "vehicle.", &v,
+             {{"kind"},
+              {"rotor_positions", "rotor_directions", "rotor_speed_max", "rotor_speed_min",
+               "moment_coefficient"},
+              {},
+              ""});
   std::optional<double> speed_min, speed_max, moment_coefficient;
-  int thrust_line = 0;
-  bool thrust_given = false;
+  int speed_line = 0;
+  const bool thrust_given =
+      table.get("max_rotor_thrust") != nullptr || table.get("min_rotor_thrust") != nullptr;
   for (const auto& [key, node] : table) {
     const std::string name(key.str());
     const std::string field = "vehicle." + name;
     const int line = LineOf(node);
-    if (name == "kind") continue;
-    if (name == "mass") {
-      v.mass = Number(node, file, field, 1e-3, 100);
-    } else if (name == "inertia") {
-      v.inertia = Vector(node, file, field, 1e-9, 10);
-    } else if (name == "rotor_positions") {
+    if (name == "rotor_positions") {
       const toml::array* rows = node.as_array();
       if (rows == nullptr || rows->size() != kNumRotors) {
         throw InputError({file, line}, field, "expected 4 points [[x, y, z], ...] in metres");
@@ -317,42 +314,16 @@ void ReadVehicle(const toml::table& table, const std::string& file, int table_li
         }
         v.rotor_directions[i] = static_cast<int>(*sign);
       }
-    } else if (name == "max_rotor_thrust" || name == "min_rotor_thrust") {
-      (name == "max_rotor_thrust" ? v.max_rotor_thrust : v.min_rotor_thrust) =
-          Number(node, file, field, 0, 1000);
-      thrust_given = true;
-      thrust_line = line;
     } else if (name == "rotor_speed_max" || name == "rotor_speed_min") {
       (name == "rotor_speed_max" ? speed_max : speed_min) = Number(node, file, field, 0, 1e5);
-      thrust_line = line;
-    } else if (name == "thrust_coefficient") {
-      v.thrust_coefficient = Number(node, file, field, 1e-15, 1);
-    } else if (name == "yaw_moment_per_thrust") {
-      v.yaw_moment_per_thrust = Number(node, file, field, 1e-6, 1);
+      speed_line = line;
     } else if (name == "moment_coefficient") {
       moment_coefficient = Number(node, file, field, 1e-18, 1);
-    } else if (name == "motor_time_constant") {
-      v.motor_time_constant = Number(node, file, field, 1e-4, 1);
-    } else if (name == "collision_size") {
-      v.collision_size = Vector(node, file, field, 1e-3, 10);
-    } else if (name == "body_drag") {
-      v.body_drag = Vector(node, file, field, 0, 10);
-    } else if (name == "rotor_drag") {
-      v.rotor_drag = Vector(node, file, field, 0, 10);
-    } else {
-      throw InputError(
-          {file, line}, field,
-          "unknown key (expected " +
-              KeyList({"kind", "mass", "inertia", "rotor_positions", "rotor_directions",
-                       "max_rotor_thrust", "min_rotor_thrust", "rotor_speed_max", "rotor_speed_min",
-                       "thrust_coefficient", "yaw_moment_per_thrust", "moment_coefficient",
-                       "motor_time_constant", "collision_size", "body_drag", "rotor_drag"}) +
-              ")");
     }
   }
   // RotorPy's names, in rotor speeds and k_m, through the (possibly new) thrust coefficient
   if ((speed_max || speed_min) && thrust_given) {
-    throw InputError({file, thrust_line}, "vehicle.rotor_speed_max",
+    throw InputError({file, speed_line}, "vehicle.rotor_speed_max",
                      "give the rotor limits as thrusts or as speeds, not both");
   }
   if (speed_max) v.max_rotor_thrust = v.ThrustAtSpeed(*speed_max);
@@ -685,6 +656,19 @@ std::string ScenarioKeyReference() {
         TrajectoryGenerators().NameList(), "the generator: min-snap (ours), a baseline, or given"},
        {"trajectory.file", "", "", "a file name",
         "method \"given\": a trajectory.csv to fly, relative to the scenario"}});
+  std::vector<KeyRow> vehicle = KeyRows<QuadParams>("vehicle");
+  vehicle.insert(vehicle.begin(), {"vehicle.kind", "", "\"tello\"", "\"tello\" or \"crazyflie\"",
+                                   "the built-in vehicle whose values the other keys change"});
+  vehicle.insert(vehicle.end(),
+                 {{"vehicle.rotor_positions", "m", "the Tello's", "4 points [[x, y, z], ...]",
+                   "rotor centres, body frame: front-left, front-right, back-right, back-left"},
+                  {"vehicle.rotor_directions", "", "[1, -1, 1, -1]", "4 signs, 1 or -1",
+                   "each rotor's yaw-moment sign (RotorPy's rotor_directions)"},
+                  {"vehicle.rotor_speed_max", "rad/s", "", "0 to 1e+05",
+                   "RotorPy's limit as a speed, through thrust_coefficient (not with the thrusts)"},
+                  {"vehicle.rotor_speed_min", "rad/s", "", "0 to 1e+05", "... the least"},
+                  {"vehicle.moment_coefficient", "N m/(rad/s)^2", "", "1e-18 to 1",
+                   "RotorPy's k_m: sets yaw_moment_per_thrust = k_m / thrust_coefficient"}});
   const ControllerConfig control;  // the defaults a scenario starts from
   std::vector<KeyRow> controller = KeyRows<ControllerConfig>("controller");
   controller.insert(controller.begin(),
@@ -696,6 +680,7 @@ std::string ScenarioKeyReference() {
   const std::vector<Table> tables = {
       {"planner", "the path: RRT*, the lattice, given waypoints, or a registered planner", planner},
       {"trajectory", "the trajectory along the path", trajectory},
+      {"vehicle", "the vehicle: a built-in kind, and any of its values changed", vehicle},
       {"controller", "the controller and the loops below it; a registered one's own keys below",
        controller},
       {"flight", "when a flight has reached its goal, or is lost; the yaw",
@@ -735,7 +720,7 @@ std::string ScenarioKeyReference() {
          "with `--set TABLE.KEY=VALUE` on the command line, or in a sweep's grid; a value "
          "outside its range is refused naming the file, line and key, and a misspelt key is "
          "refused naming the key it looks like.\n\n"
-      << "Tables not yet on this page ([vehicle], [render]) are described in the "
+      << "Tables not yet on this page ([render]) are described in the "
          "pages linked from the README.\n";
   std::vector<Table> all = tables;
   all.insert(all.end(), plugins.begin(), plugins.end());

@@ -51,6 +51,25 @@ QuadParams Crazyflie() {
 
 }  // namespace
 
+void QuadParams::Describe(Archive& a) {
+  a.Number({"mass", "kg", "with battery and guards"}, &mass, 1e-3, 100);
+  a.Vector({"inertia", "kg m^2", "principal moments about the body axes (FLU)"}, &inertia, 1e-9,
+           10);
+  a.Number({"max_rotor_thrust", "N", "each rotor's most"}, &max_rotor_thrust, 0, 1000);
+  a.Number({"min_rotor_thrust", "N", "each rotor's least"}, &min_rotor_thrust, 0, 1000);
+  a.Number({"thrust_coefficient", "N/(rad/s)^2", "thrust per squared rotor speed (k_eta)"},
+           &thrust_coefficient, 1e-15, 1);
+  a.Number({"yaw_moment_per_thrust", "m", "reaction moment per newton of thrust (k_m / k_eta)"},
+           &yaw_moment_per_thrust, 1e-6, 1);
+  a.Number({"motor_time_constant", "s", "the thrust's first-order lag"}, &motor_time_constant, 1e-4,
+           1);
+  a.Vector({"collision_size", "m", "the collision box's full sides"}, &collision_size, 1e-3, 10);
+  a.Vector({"body_drag", "N/(m/s)^2", "quadratic body drag per body axis (c_Dx, c_Dy, c_Dz)"},
+           &body_drag, 0, 10);
+  a.Vector({"rotor_drag", "s/m", "rotor drag per newton of thrust and m/s, per body axis"},
+           &rotor_drag, 0, 10);
+}
+
 void QuadParams::Validate() const {
   RequirePositive(mass, "mass");
   for (int i = 0; i < 3; ++i) RequirePositive(inertia[i], "inertia");

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "common/drag.h"
+#include "common/schema.h"
 #include "common/types.h"
 
 namespace aerobox {
@@ -89,6 +90,9 @@ struct QuadParams {
   double propeller_radius = 0.016;
   double guard_radius = 0.0175;
 
+  // The numbers a scenario's [vehicle] sets (common/schema.h); the rotors' positions and
+  // directions are arrays of four, read by the scenario.
+  void Describe(Archive& a);
   // Throws std::invalid_argument naming the field and value when a value is not physical.
   void Validate() const;
 

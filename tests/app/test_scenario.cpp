@@ -247,6 +247,14 @@ TEST_CASE("[vehicle], [controller] and [flight]: errors name the line and the ke
             .rfind("scenes/x/scenario.toml:2: vehicle: QuadParams.max_rotor_thrust 0.4 N cannot "
                    "lift the mass 5 kg",
                    0) == 0);
+  // the numbers come from QuadParams' Describe: a misspelt key is named with the one it looks
+  // like, a value out of range with the range
+  CHECK(ScenarioError("map = \"m.txt\"\n[vehicle]\nmas = 0.1\n")
+            .find("vehicle.mas: unknown key (expected kind, mass, inertia, ") != std::string::npos);
+  CHECK(ScenarioError("map = \"m.txt\"\n[vehicle]\nmas = 0.1\n")
+            .find("moment_coefficient); did you mean mass?") != std::string::npos);
+  CHECK(ScenarioError("map = \"m.txt\"\n[vehicle]\ninertia = [1e-5, 1e-5, 20]\n") ==
+        "scenes/x/scenario.toml:3: vehicle.inertia[2]: expected a number from 1e-09 to 10");
   CHECK(ScenarioError("map = \"m.txt\"\n[vehicle]\nrotor_directions = [1, 1, -1, 2]\n") ==
         "scenes/x/scenario.toml:3: vehicle.rotor_directions[3]: expected 1 or -1 (the sign of the "
         "rotor's yaw moment on the body)");
