@@ -366,10 +366,6 @@ void ReadController(const toml::table& table, const std::string& file, int table
   }
 }
 
-void ReadFlight(const toml::table& table, const std::string& file, FlightParams* flight) {
-  ReadFields(table, file, "flight.", flight);
-}
-
 // The first candidate that is given; its origin goes to `origin`.
 struct Candidate {
   std::optional<Vec3> point;
@@ -538,14 +534,6 @@ void ReadSensors(const toml::table& table, const std::string& file, int table_li
   } catch (const std::invalid_argument& e) {
     throw InputError({file, table_line}, "sensors", e.what());
   }
-}
-
-void ReadSensing(const toml::table& table, const std::string& file, SensingParams* sensing) {
-  ReadFields(table, file, "sensing.", sensing);
-}
-
-void ReadReplan(const toml::table& table, const std::string& file, ReplanParams* replan) {
-  ReadFields(table, file, "replan.", replan);
 }
 
 namespace {
@@ -720,8 +708,7 @@ std::string ScenarioKeyReference() {
          "with `--set TABLE.KEY=VALUE` on the command line, or in a sweep's grid; a value "
          "outside its range is refused naming the file, line and key, and a misspelt key is "
          "refused naming the key it looks like.\n\n"
-      << "Tables not yet on this page ([render]) are described in the "
-         "pages linked from the README.\n";
+      << "[render] defines no keys yet.\n";
   std::vector<Table> all = tables;
   all.insert(all.end(), plugins.begin(), plugins.end());
   for (const Table& table : all) {
@@ -753,6 +740,70 @@ Scenario ReadScenario(std::istream& in, const std::string& file) {
 }
 
 namespace {
+
+// A scenario's tables, each read by one function from the table and where it starts.
+using SectionReader = void (*)(const toml::table&, const SourceLocation&, Scenario*);
+const std::pair<const char*, SectionReader> kSections[] = {
+    {"planner", [](const toml::table& t, const SourceLocation& at,
+                   Scenario* s) { ReadPlanner(t, at.file, &s->planning); }},
+    {"trajectory", [](const toml::table& t, const SourceLocation& at,
+                      Scenario* s) { ReadTrajectory(t, at.file, &s->planning); }},
+    {"vehicle", [](const toml::table& t, const SourceLocation& at,
+                   Scenario* s) { ReadVehicle(t, at.file, at.line, s); }},
+    {"controller",
+     [](const toml::table& t, const SourceLocation& at, Scenario* s) {
+       ReadController(t, at.file, at.line, &s->controller);
+       s->drag_feedforward_given = t.get("drag_feedforward") != nullptr;
+     }},
+    {"flight",
+     [](const toml::table& t, const SourceLocation& at, Scenario* s) {
+       ReadFields(t, at.file, "flight.", &s->flight);
+       s->yaw_given = s->yaw_given || t.get("yaw") != nullptr;
+     }},
+    {"wind", [](const toml::table& t, const SourceLocation& at,
+                Scenario* s) { ReadWind(t, at.file, at.line, &s->wind); }},
+    {"aero",
+     [](const toml::table& t, const SourceLocation& at, Scenario* s) {
+       ReadAero(t, at.file, &s->aero);
+       s->aero_given = true;
+     }},
+    {"sensors", [](const toml::table& t, const SourceLocation& at,
+                   Scenario* s) { ReadSensors(t, at.file, at.line, &s->sensors); }},
+    {"sensing", [](const toml::table& t, const SourceLocation& at,
+                   Scenario* s) { ReadFields(t, at.file, "sensing.", &s->sensing); }},
+    {"replan", [](const toml::table& t, const SourceLocation& at,
+                  Scenario* s) { ReadFields(t, at.file, "replan.", &s->replan); }},
+    {"render",
+     [](const toml::table& t, const SourceLocation& at, Scenario*) {
+       for (const auto& [key, node] : t) {
+         throw InputError({at.file, LineOf(node)}, "render." + std::string(key.str()),
+                          "unknown key (this version defines no keys in [render])");
+       }
+     }},
+};
+
+const SectionReader* FindSection(const std::string& name) {
+  for (const auto& [section, read] : kSections) {
+    if (name == section) return &read;
+  }
+  return nullptr;
+}
+
+// "unknown key (expected name, map, ..., [planner], ...)" and the key it looks like.
+std::string UnknownTopLevelKey(const std::string& name) {
+  std::vector<std::string> keys = {"name",        "map",     "start",
+                                   "goal",        "goals",   "stop_at_goals",
+                                   "hold",        "unknown", "unknown_fraction",
+                                   "unknown_map", "seed"};
+  std::vector<std::string> shown = keys;
+  for (const auto& section : kSections) {
+    keys.push_back(section.first);
+    shown.push_back("[" + std::string(section.first) + "]");
+  }
+  const std::string nearest = NearestName(name, keys);
+  return "unknown key (expected " + ListOfNames(shown) + ")" +
+         (nearest.empty() ? "" : "; did you mean " + nearest + "?");
+}
 
 Scenario ScenarioFromTable(const toml::table& table, const std::string& file) {
   Scenario scenario;
@@ -821,11 +872,6 @@ Scenario ScenarioFromTable(const toml::table& table, const std::string& file) {
       if (!value || value->empty()) throw InputError(where, name, "expected a file name");
       scenario.unknown_map = (fs::path(file).parent_path() / *value).lexically_normal().string();
       scenario.unknown_line = LineOf(node);
-    } else if (name == "sensing" || name == "replan") {
-      const toml::table* section = node.as_table();
-      if (section == nullptr) throw InputError(where, name, "expected a table [" + name + "]");
-      if (name == "sensing") ReadSensing(*section, file, &scenario.sensing);
-      if (name == "replan") ReadReplan(*section, file, &scenario.replan);
     } else if (name == "stop_at_goals") {
       scenario.stop_at_goals = Boolean(node, file, name);
     } else if (name == "hold") {
@@ -838,48 +884,12 @@ Scenario ScenarioFromTable(const toml::table& table, const std::string& file) {
         throw InputError(where, name, "expected a non-negative integer");
       }
       scenario.seed = static_cast<std::uint64_t>(value->get());
-    } else if (name == "planner") {
-      const toml::table* section = node.as_table();
-      if (section == nullptr) throw InputError(where, name, "expected a table [planner]");
-      ReadPlanner(*section, file, &scenario.planning);
-    } else if (name == "trajectory") {
-      const toml::table* section = node.as_table();
-      if (section == nullptr) throw InputError(where, name, "expected a table [trajectory]");
-      ReadTrajectory(*section, file, &scenario.planning);
-    } else if (name == "vehicle" || name == "controller" || name == "flight") {
+    } else if (const SectionReader* read = FindSection(name)) {
       const toml::table* section = node.as_table();
       if (section == nullptr) throw InputError(where, name, "expected a table [" + name + "]");
-      if (name == "vehicle") ReadVehicle(*section, file, LineOf(node), &scenario);
-      if (name == "controller") {
-        ReadController(*section, file, LineOf(node), &scenario.controller);
-        scenario.drag_feedforward_given = section->get("drag_feedforward") != nullptr;
-      }
-      if (name == "flight") {
-        ReadFlight(*section, file, &scenario.flight);
-        scenario.yaw_given = scenario.yaw_given || section->get("yaw") != nullptr;
-      }
-    } else if (name == "wind" || name == "aero" || name == "sensors") {
-      const toml::table* section = node.as_table();
-      if (section == nullptr) throw InputError(where, name, "expected a table [" + name + "]");
-      if (name == "wind") ReadWind(*section, file, LineOf(node), &scenario.wind);
-      if (name == "aero") {
-        ReadAero(*section, file, &scenario.aero);
-        scenario.aero_given = true;
-      }
-      if (name == "sensors") ReadSensors(*section, file, LineOf(node), &scenario.sensors);
-    } else if (name == "render") {
-      const toml::table* section = node.as_table();
-      if (section == nullptr) throw InputError(where, name, "expected a table [" + name + "]");
-      for (const auto& [inner, inner_node] : *section) {
-        throw InputError({file, LineOf(inner_node)}, name + "." + std::string(inner.str()),
-                         "unknown key (this version defines no keys in [" + name + "])");
-      }
+      (*read)(*section, {file, LineOf(node)}, &scenario);
     } else {
-      throw InputError(where, name,
-                       "unknown key (expected name, map, start, goal, goals, stop_at_goals, "
-                       "hold, unknown, unknown_fraction, unknown_map, seed, [planner], "
-                       "[trajectory], [vehicle], [controller], [flight], [wind], [aero], "
-                       "[sensors], [sensing], [replan] or [render])");
+      throw InputError(where, name, UnknownTopLevelKey(name));
     }
   }
   // a missing key belongs to the top-level table, which starts at line 1

@@ -82,6 +82,15 @@ TEST_CASE("scenario files: errors name the file, the line and the key") {
   CHECK(ScenarioError("map = \"m.txt\"\n[planner]\ninformed = 1\n") ==
         "scenes/x/scenario.toml:3: planner.informed: expected true or false");
   CHECK(ScenarioError("name = \"a\"\n") == "scenes/x/scenario.toml:1: map: missing key 'map'");
+  CHECK(ScenarioError("map = \"m.txt\"\nsed = 3\n") ==
+        "scenes/x/scenario.toml:2: sed: unknown key (expected name, map, start, goal, goals, "
+        "stop_at_goals, hold, unknown, unknown_fraction, unknown_map, seed, [planner], "
+        "[trajectory], [vehicle], [controller], [flight], [wind], [aero], [sensors], [sensing], "
+        "[replan] or [render]); did you mean seed?");
+  CHECK(ScenarioError("map = \"m.txt\"\n[sensor]\nimu = true\n")
+            .find("sensor: unknown key (expected name, ") != std::string::npos);
+  CHECK(ScenarioError("map = \"m.txt\"\n[sensor]\nimu = true\n").find("did you mean sensors?") !=
+        std::string::npos);
   CHECK(ScenarioError("map = \"m.txt\"\n\nstart = [1, 2]\n") ==
         "scenes/x/scenario.toml:3: start: expected an array of 3 numbers [x, y, z] in metres");
   CHECK(ScenarioError("map = \"m.txt\"\ngoal = [1, \"2\", 3]\n") ==
