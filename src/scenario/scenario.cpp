@@ -14,170 +14,14 @@
 #include "map/map_reader.h"
 #include "planning/planner.h"
 #include "scenario/read_file.h"
+#include "scenario/toml_fields.h"
 #include "scene/scene_mjcf.h"
 #include "vehicle/quad_params.h"
 
 namespace aerobox {
 namespace fs = std::filesystem;
+using namespace toml_read;  // the readers of TOML values and tables (toml_fields.h)
 namespace {
-
-int LineOf(const toml::node& node) { return static_cast<int>(node.source().begin.line); }
-
-Vec3 ReadPoint(const toml::node& node, const std::string& file, const char* key) {
-  const toml::array* array = node.as_array();
-  const SourceLocation where{file, LineOf(node)};
-  if (array == nullptr || array->size() != 3) {
-    throw InputError(where, key, "expected an array of 3 numbers [x, y, z] in metres");
-  }
-  Vec3 point;
-  for (int i = 0; i < 3; ++i) {
-    const std::optional<double> value = (*array)[static_cast<size_t>(i)].value<double>();
-    if (!value || !std::isfinite(*value)) {
-      throw InputError(where, std::string(key) + "[" + std::to_string(i) + "]",
-                       "expected a finite number");
-    }
-    point[i] = *value;
-  }
-  return point;
-}
-
-// A number of the [planner] table within [low, high]; InputError at its line otherwise.
-double Number(const toml::node& node, const std::string& file, const std::string& key, double low,
-              double high) {
-  const std::optional<double> value = node.is_number() ? node.value<double>() : std::nullopt;
-  if (!value || !(*value >= low && *value <= high)) {
-    throw InputError({file, LineOf(node)}, key,
-                     "expected a number from " + FormatNumber(low) + " to " + FormatNumber(high));
-  }
-  return *value;
-}
-
-bool Boolean(const toml::node& node, const std::string& file, const std::string& key) {
-  if (!node.is_boolean()) throw InputError({file, LineOf(node)}, key, "expected true or false");
-  return node.as_boolean()->get();
-}
-
-// A 3-vector: an array of 3 numbers, or one number for all three; each within [low, high].
-Vec3 Vector(const toml::node& node, const std::string& file, const std::string& key, double low,
-            double high) {
-  if (node.is_number()) return Vec3::Constant(Number(node, file, key, low, high));
-  const toml::array* array = node.as_array();
-  if (array == nullptr || array->size() != 3) {
-    throw InputError({file, LineOf(node)}, key, "expected a number or an array of 3 numbers");
-  }
-  Vec3 v;
-  for (int i = 0; i < 3; ++i) {
-    v[i] = Number((*array)[static_cast<size_t>(i)], file, key + "[" + std::to_string(i) + "]", low,
-                  high);
-  }
-  return v;
-}
-
-// A table read through a struct's Describe (common/schema.h): each field's key is looked up,
-// read, and checked against the field's range.
-class TomlFields : public Archive {
- public:
-  // Keys in `skip` belong to another reader (a registered plug-in's own, of the same name as a
-  // built-in's field): this one leaves them alone.
-  TomlFields(const toml::table& table, std::string file, std::string prefix,
-             std::vector<std::string> skip = {})
-      : table_(table), file_(std::move(file)), prefix_(std::move(prefix)), skip_(std::move(skip)) {}
-  using Archive::Integer;
-
-  void Number(const Field& field, double* value, double low, double high) override {
-    if (const toml::node* node = Find(field)) {
-      *value = aerobox::Number(*node, file_, prefix_ + field.name, low, high);
-    }
-  }
-  void Integer(const Field& field, long* value, long low, long high) override {
-    const toml::node* node = Find(field);
-    if (node == nullptr) return;
-    const std::optional<double> number = node->is_number() ? node->value<double>() : std::nullopt;
-    if (!number || !(*number >= static_cast<double>(low) && *number <= static_cast<double>(high)) ||
-        std::floor(*number) != *number) {
-      throw InputError(
-          {file_, LineOf(*node)}, prefix_ + field.name,
-          "expected a whole number from " + std::to_string(low) + " to " + std::to_string(high));
-    }
-    *value = static_cast<long>(*number);
-  }
-  void Boolean(const Field& field, bool* value) override {
-    if (const toml::node* node = Find(field)) {
-      *value = aerobox::Boolean(*node, file_, prefix_ + field.name);
-    }
-  }
-  void Vector(const Field& field, Vec3* value, double low, double high) override {
-    if (const toml::node* node = Find(field)) {
-      *value = aerobox::Vector(*node, file_, prefix_ + field.name, low, high);
-    }
-  }
-  void Choice(const Field& field, std::string* value,
-              const std::vector<std::string>& choices) override {
-    const toml::node* node = Find(field);
-    if (node == nullptr) return;
-    const std::optional<std::string> text = node->value<std::string>();
-    if (!text || std::find(choices.begin(), choices.end(), *text) == choices.end()) {
-      std::vector<std::string> quoted;
-      for (const std::string& choice : choices) quoted.push_back("\"" + choice + "\"");
-      throw InputError({file_, LineOf(*node)}, prefix_ + field.name,
-                       "expected " + ListOfNames(quoted));
-    }
-    *value = *text;
-  }
-
- private:
-  const toml::node* Find(const Field& field) const {
-    if (std::find(skip_.begin(), skip_.end(), field.name) != skip_.end()) return nullptr;
-    return table_.get(field.name);
-  }
-
-  const toml::table& table_;
-  std::string file_;
-  std::string prefix_;
-  std::vector<std::string> skip_;
-};
-
-// The keys of a table that are not its struct's fields: read by hand before or after it, or a
-// registered kind's own (which win over a built-in field of the same name).
-struct OtherKeys {
-  std::vector<std::string> before, after;
-  std::vector<std::string> plugin;  // the kind's own keys
-  std::string kind;                 // which kind: controller kind "mine"
-};
-
-// Reads `table` into `params` through its Describe. Any key that is neither a field nor one of
-// `other` is refused, listing the keys (in the order: before, the fields, after; then the
-// kind's own) and naming the one it looks like a misspelling of.
-template <typename Params>
-void ReadFields(const toml::table& table, const std::string& file, const std::string& prefix,
-                Params* params, const OtherKeys& other = {}) {
-  std::vector<std::string> names = other.before;
-  for (const KeyRow& row : KeyRows<Params>("")) names.push_back(row.key.substr(1));
-  names.insert(names.end(), other.after.begin(), other.after.end());
-  std::vector<std::string> all = names;
-  all.insert(all.end(), other.plugin.begin(), other.plugin.end());
-  for (const auto& [key, node] : table) {
-    const std::string name(key.str());
-    if (std::find(all.begin(), all.end(), name) != all.end()) continue;
-    std::string own;
-    for (const std::string& key_name : other.plugin) own += (own.empty() ? "" : ", ") + key_name;
-    const std::string nearest = NearestName(name, all);
-    throw InputError({file, LineOf(node)}, prefix + name,
-                     "unknown key (expected " + ListOfNames(names) +
-                         (own.empty() ? "" : "; " + other.kind + " adds " + own) + ")" +
-                         (nearest.empty() ? "" : "; did you mean " + nearest + "?"));
-  }
-  TomlFields reader(table, file, prefix, other.plugin);
-  params->Describe(reader);
-}
-
-// A registered plug-in's own keys in its table, after the built-in ones: read through its
-// parameters' Describe.
-void ReadPluginKeys(const toml::table& table, const std::string& file, const std::string& prefix,
-                    PluginParameters* params) {
-  TomlFields reader(table, file, prefix);
-  params->Describe(reader);
-}
 
 void ReadPlanner(const toml::table& table, const std::string& file, PlanningSettings* settings) {
   // the kind first, whatever the table's order: a registered planner brings its own keys
@@ -253,12 +97,6 @@ void ReadTrajectory(const toml::table& table, const std::string& file, PlanningS
       settings->given_trajectory = ReadTrajectoryCsv(in, path);
     }
   }
-}
-
-std::string Text(const toml::node& node, const std::string& file, const std::string& key) {
-  const std::optional<std::string> value = node.value<std::string>();
-  if (!value) throw InputError({file, LineOf(node)}, key, "expected a string");
-  return *value;
 }
 
 // The names for an "unknown key" message.

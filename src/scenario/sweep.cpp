@@ -13,14 +13,12 @@
 #include "common/error.h"
 #include "common/quoting.h"
 #include "scenario/read_file.h"
+#include "scenario/toml_fields.h"
 
 namespace aerobox {
 namespace fs = std::filesystem;
+using toml_read::LineOf;
 namespace {
-
-constexpr int kMaxRuns = 1000000;
-
-int LineOf(const toml::node& node) { return static_cast<int>(node.source().begin.line); }
 
 // A TOML value as text that TOML and JSON both read the same: numbers (a float keeps its
 // point), booleans, strings in double quotes, arrays of these.
@@ -88,6 +86,14 @@ std::uint64_t Fnv1a(const std::string& text) {
 }
 
 }  // namespace
+
+void SweepKeep::Describe(Archive& a) {
+  a.Integer({"video", "", "how many runs (the first ones) write video.mp4"}, &video, 0, kMaxRuns);
+  a.Boolean({"telemetry", "", "every run keeps telemetry.csv"}, &telemetry);
+  a.Boolean({"overview", "", "every run keeps overview.png"}, &overview);
+  a.Boolean({"report", "", "every run keeps its report.html (the sweep writes its own page)"},
+            &report);
+}
 
 std::string SweepRunId(const std::string& label, std::uint64_t seed,
                        const std::vector<Setting>& settings) {
@@ -223,29 +229,12 @@ Sweep ReadSweep(const std::string& path) {
     } else if (name == "keep") {
       const toml::table* keep = node.as_table();
       if (keep == nullptr) throw InputError(where, name, "expected a table [keep]");
-      for (const auto& [keep_key, value] : *keep) {
-        const std::string field = "keep." + std::string(keep_key.str());
-        const SourceLocation at{path, LineOf(value)};
-        if (keep_key == "video") {
-          const std::optional<std::int64_t> n = value.value<std::int64_t>();
-          if (!n || *n < 0 || *n > kMaxRuns) {
-            throw InputError(at, field, "expected how many runs (the first ones) write a video");
-          }
-          sweep.keep.video = static_cast<int>(*n);
-        } else if (keep_key == "telemetry" || keep_key == "overview" || keep_key == "report") {
-          const std::optional<bool> on = value.value<bool>();
-          if (!on) throw InputError(at, field, "expected true or false");
-          (keep_key == "telemetry"  ? sweep.keep.telemetry
-           : keep_key == "overview" ? sweep.keep.overview
-                                    : sweep.keep.report) = *on;
-        } else {
-          throw InputError(at, field,
-                           "unknown key (expected video, telemetry, overview or report)");
-        }
-      }
+      toml_read::ReadFields(*keep, path, "keep.", &sweep.keep);
     } else {
+      const std::string nearest = NearestName(name, {"name", "scenarios", "seeds", "grid", "keep"});
       throw InputError(where, name,
-                       "unknown key (expected name, scenarios, seeds, [grid] or [keep])");
+                       "unknown key (expected name, scenarios, seeds, [grid] or [keep])" +
+                           (nearest.empty() ? "" : "; did you mean " + nearest + "?"));
     }
   }
   if (sweep.scenarios.empty()) throw InputError({path, 1}, "scenarios", "missing key");

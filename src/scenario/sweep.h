@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/schema.h"
 #include "scenario/scenario.h"
 
 namespace aerobox {
@@ -24,11 +25,15 @@ namespace aerobox {
 //   telemetry = false                         #   telemetry.csv,
 //   overview = false                          #   overview.png,
 //   report = false                            #   report.html
+inline constexpr int kMaxRuns = 1000000;  // in one sweep
+
+// [keep]: what each run keeps beside its summary.
 struct SweepKeep {
   int video = 0;  // runs (in order) that write video.mp4
   bool telemetry = false;
   bool overview = false;
-  bool report = false;  // each run's report.html (the sweep writes its own page anyway)
+  bool report = false;        // each run's report.html (the sweep writes its own page anyway)
+  void Describe(Archive& a);  // common/schema.h
 };
 
 struct SweepRun {

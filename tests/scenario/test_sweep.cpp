@@ -102,6 +102,24 @@ TEST_CASE("a bad sweep file names its line before anything runs") {
   CHECK(line_of("twice", window + "seeds = [1, 2, 1]\n") == 2);
   CHECK(line_of("keep", window + "[keep]\nvideos = 1\n") == 3);
   CHECK(line_of("missing", "seeds = 2\n") == 1);
+  // [keep] is read through SweepKeep's Describe: a misspelt key or a value out of range is
+  // named as in a scenario
+  const auto error_of = [](const std::string& name, const std::string& text) {
+    try {
+      ReadSweep(WriteSweep(name, text));
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  CHECK(
+      error_of("keep_typo", window + "[keep]\nvideos = 1\n")
+          .find("keep.videos: unknown key (expected video, telemetry, overview or report); did you "
+                "mean video?") != std::string::npos);
+  CHECK(error_of("keep_range", window + "[keep]\nvideo = -1\n")
+            .find("keep.video: expected a whole number from 0 to 1000000") != std::string::npos);
+  CHECK(error_of("top_typo", window + "seedz = 3\n").find("did you mean seeds?") !=
+        std::string::npos);
 }
 
 }  // namespace aerobox
