@@ -410,7 +410,7 @@ class Cli {
     command
         ->add_option("--set", set_texts,
                      "set a scenario key, KEY=VALUE with a TOML value: trajectory.max_speed=2.0, "
-                     "controller.kind=se3; may be given several times")
+                     "controller.kind=se3; may be given several times; also on a bare map")
         ->expected(1)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   }
@@ -619,7 +619,7 @@ class Cli {
 
   // The set-up the options name: the scenario or map, read with the overrides, then the
   // command line's own settings, each checked.
-  // --start, --goal, --seed, --set, --wind and --turbulence, checked.
+  // --start, --goal, --seed, --set, and the flags that are --set in other words.
   SetupOverrides Overrides() const {
     SetupOverrides overrides;
     overrides.start = ParsePointOption(start_text, "--start");
@@ -633,17 +633,32 @@ class Cli {
     for (const std::string& text : set_texts) {
       overrides.settings.push_back(ParseSetting(text, "--set"));
     }
-    if (!wind_text.empty()) {
-      overrides.wind_mean = ParsePointOption(wind_text, "--wind", "m/s");
-      if (overrides.wind_mean->norm() > 50) {
-        throw InputError({"command line", 0}, "--wind", "expected at most 50 m/s");
-      }
+    // the flags that stand for scenario keys: --set with the flag's name in messages
+    const auto flag = [&overrides](const char* option, const char* key, std::string value) {
+      Setting setting;
+      setting.key = key;
+      setting.value = std::move(value);
+      setting.where.file = "command line";
+      setting.option = option;
+      overrides.settings.push_back(std::move(setting));
+    };
+    if (!objective.empty()) flag("--objective", "trajectory.objective", JsonQuoted(objective));
+    if (!max_speed.empty()) flag("--max-speed", "trajectory.max_speed", max_speed);
+    if (!max_accel.empty()) flag("--max-accel", "trajectory.max_accel", max_accel);
+    if (!trajectory_method.empty()) {
+      flag("--trajectory", "trajectory.method", JsonQuoted(trajectory_method));
     }
-    if (turbulence != -1) {
-      if (!(turbulence >= 0 && turbulence <= 20)) {
-        throw InputError({"command line", 0}, "--turbulence", "expected 0 to 20 m/s");
-      }
-      overrides.turbulence = turbulence;
+    if (const std::optional<Vec3> wind = ParsePointOption(wind_text, "--wind", "m/s")) {
+      flag("--wind", "wind.mean",
+           "[" + FormatNumber(wind->x()) + ", " + FormatNumber(wind->y()) + ", " +
+               FormatNumber(wind->z()) + "]");
+    }
+    if (!turbulence.empty()) {
+      // one standard deviation on every axis; 0: none
+      double sigma = 0.0;
+      const bool some = ParseNumber(turbulence, &sigma) && sigma != 0.0;
+      flag("--turbulence", "wind.turbulence", some ? "\"dryden\"" : "\"none\"");
+      flag("--turbulence", "wind.intensity", turbulence);
     }
     return overrides;
   }
@@ -652,29 +667,6 @@ class Cli {
     const SetupOverrides overrides = Overrides();
     FlightSetup setup = LoadFlightSetup(input, overrides);
     ReadInjectedFaults(&setup);
-    if (!objective.empty()) {
-      if (objective != "min-time" && objective != "snap") {
-        throw InputError({"command line", 0}, "--objective", "expected min-time or snap");
-      }
-      setup.planning.trajectory.objective =
-          objective == "snap" ? TimeObjective::kSnap : TimeObjective::kMinTime;
-    }
-    if (max_speed) {
-      // up to the vehicle's own top speed (8 m/s for the Tello)
-      if (!(*max_speed >= 0.01 && *max_speed <= setup.vehicle.max_speed)) {
-        throw InputError({"command line", 0}, "--max-speed",
-                         "expected 0.01 to " + FormatNumber(setup.vehicle.max_speed) +
-                             " m/s (the vehicle's top speed), got " + FormatNumber(*max_speed));
-      }
-      setup.planning.trajectory.max_speed = *max_speed;
-    }
-    if (max_accel) {
-      if (!(*max_accel >= 0.01 && *max_accel <= 10.0)) {
-        throw InputError({"command line", 0}, "--max-accel",
-                         "expected 0.01 to 10 m/s^2, got " + FormatNumber(*max_accel));
-      }
-      setup.planning.trajectory.max_accel = *max_accel;
-    }
     if (fly->parsed() && fly_options.telemetry_rate != 0) {
       const double every = setup.controller.rate / fly_options.telemetry_rate;
       if (!(fly_options.telemetry_rate > 0) || std::abs(every - std::round(every)) > 1e-9) {
@@ -682,15 +674,6 @@ class Cli {
                          "must divide the controller's rate, " +
                              FormatNumber(setup.controller.rate) + " Hz (e.g. 250, 50, 10)");
       }
-    }
-    if (!trajectory_method.empty()) {
-      if (TrajectoryGenerators().Find(trajectory_method) == nullptr ||
-          (trajectory_method == "given" && setup.planning.given_trajectory.empty())) {
-        throw InputError({"command line", 0}, "--trajectory",
-                         "expected " + TrajectoryGenerators().NameList() +
-                             " (given needs a [trajectory] file in the scenario)");
-      }
-      setup.planning.trajectory_method = trajectory_method;
     }
     if (fly->parsed()) {
       // a built-in controller by name; anything with a ':' is a Python class
@@ -740,8 +723,8 @@ class Cli {
   std::string trajectory_method;
   PythonModules python_modules;
   std::string wind_text;
-  double turbulence = -1;
-  std::optional<double> max_speed, max_accel;  // unset: the scenario's
+  std::string turbulence;            // [m/s]; empty: the scenario's
+  std::string max_speed, max_accel;  // [m/s], [m/s^2]; empty: the scenario's
   std::string objective;
   std::vector<std::string> compare_inputs = {
       "scenes/window/scenario.toml", "scenes/maze/scenario.toml", "scenes/forest/scenario.toml",

@@ -9,6 +9,7 @@
 
 #include "common/error.h"
 #include "common/number_format.h"
+#include "common/quoting.h"
 #include "common/schema.h"
 #include "control/controllers.h"
 #include "map/map_reader.h"
@@ -96,6 +97,12 @@ void ReadTrajectory(const toml::table& table, const std::string& file, PlanningS
       std::istringstream in(text);
       settings->given_trajectory = ReadTrajectoryCsv(in, path);
     }
+  }
+  const toml::node* method = table.get("method");
+  if (method != nullptr && settings->trajectory_method == "given" &&
+      settings->given_trajectory.empty()) {
+    throw InputError({file, LineOf(*method)}, "trajectory.method",
+                     "\"given\" needs the trajectory's file: trajectory.file = \"trajectory.csv\"");
   }
 }
 
@@ -428,6 +435,10 @@ Scenario ScenarioWithSettings(const std::string& text, const std::string& file,
   Scenario plain = ScenarioFromTable(table, file);
   if (settings.empty()) return plain;
   const auto blame = [&file](const Setting& setting, const InputError& e) {
+    if (!setting.option.empty()) {  // a flag's value, as the flag: "--max-speed: expected ..."
+      return InputError(setting.where, setting.option,
+                        (e.field() == setting.key ? "" : e.field() + ": ") + e.problem());
+    }
     return InputError(
         setting.where, setting.key,
         "in " + file + ": " + (e.field().empty() ? "" : e.field() + ": ") + e.problem());
@@ -446,6 +457,10 @@ Scenario ScenarioWithSettings(const std::string& text, const std::string& file,
   try {
     return ScenarioFromTable(all, file);
   } catch (const InputError& e) {
+    // settings that fail only together: the one of the key refused, else the first
+    for (auto s = settings.rbegin(); s != settings.rend(); ++s) {
+      if (s->key == e.field()) throw blame(*s, e);
+    }
     throw blame(settings.front(), e);
   }
 }
@@ -568,7 +583,7 @@ Setting ParseSetting(const std::string& text, const std::string& option) {
     throw InputError({"command line", 0}, option,
                      "expected KEY=VALUE, e.g. trajectory.max_speed=2.0, got '" + text + "'");
   }
-  return {text.substr(0, equals), text.substr(equals + 1), {"command line", 0}};
+  return {text.substr(0, equals), text.substr(equals + 1), {"command line", 0}, ""};
 }
 
 Scenario ReadScenario(std::istream& in, const std::string& file) {
@@ -732,6 +747,14 @@ Scenario ScenarioFromTable(const toml::table& table, const std::string& file) {
   }
   // a missing key belongs to the top-level table, which starts at line 1
   if (scenario.map_path.empty()) throw InputError({file, 1}, "map", "missing key 'map'");
+  // a speed cap within the vehicle's own top speed (the schema's range is the fastest
+  // vehicle's)
+  const double cap = scenario.planning.trajectory.max_speed, top = scenario.vehicle.max_speed;
+  if (const toml::node* given = table.at_path("trajectory.max_speed").node(); given && cap > top) {
+    throw InputError({file, LineOf(*given)}, "trajectory.max_speed",
+                     "expected 0.01 to " + FormatNumber(top) + " m/s (the " +
+                         scenario.vehicle_kind + "'s top speed), got " + FormatNumber(cap));
+  }
   return scenario;
 }
 
@@ -749,11 +772,9 @@ FlightSetup LoadFlightSetup(const std::string& path, const SetupOverrides& overr
   if (fs::path(path).extension() == ".toml") {
     scenario = ScenarioWithSettings(ReadTextFile(path), path, overrides.settings);
   } else if (!overrides.settings.empty()) {
-    const Setting& setting = overrides.settings.front();
-    throw InputError(setting.where, setting.key,
-                     "settings change a scenario's keys: give a scenario file (.toml), not the "
-                     "map " +
-                         path);
+    // a bare map is the scenario that names it and nothing else: the settings change that
+    const std::string alone = "map = " + JsonQuoted(fs::path(path).filename().string()) + "\n";
+    scenario = ScenarioWithSettings(alone, path, overrides.settings);
   }
   return SetupFrom(path, std::move(scenario), overrides);
 }
@@ -794,11 +815,6 @@ FlightSetup SetupFrom(const std::string& path, std::optional<Scenario> scenario,
     setup.wind = scenario->wind;
     setup.aero = scenario->aero;
     setup.sensors = scenario->sensors;
-  }
-  if (overrides.wind_mean) setup.wind.mean = *overrides.wind_mean;
-  if (overrides.turbulence) {
-    setup.wind.turbulence = *overrides.turbulence > 0 ? Turbulence::kDryden : Turbulence::kNone;
-    setup.wind.intensity = Vec3::Constant(*overrides.turbulence);
   }
   // wind moves the vehicle through drag only: it comes with drag unless [aero] says otherwise
   if (setup.wind.Enabled() && !(scenario && scenario->aero_given)) {

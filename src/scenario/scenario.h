@@ -94,6 +94,7 @@ struct Setting {
   std::string key;       // "trajectory.max_speed", "controller.kind", "goal"
   std::string value;     // 2.0, "cascade", cascade, [9.0, 7.0, 1.5]
   SourceLocation where;  // where it was given, for messages
+  std::string option;    // the command-line flag it stands for ("--max-speed"), named in messages
 };
 
 struct SetupOverrides {
@@ -101,10 +102,9 @@ struct SetupOverrides {
   std::optional<Vec3> goal;
   std::vector<Vec3> via;  // --goal given several times: all but the last, in order
   std::optional<std::uint64_t> seed;
-  std::optional<Vec3> wind_mean;     // [m/s] --wind
-  std::optional<double> turbulence;  // [m/s] --turbulence: Dryden with this intensity, 0: none
-  // applied to the scenario's keys before it is read; a setting the scenario's reader refuses is
-  // reported where the setting was given
+  // applied to the scenario's keys (or to a bare map's, as a scenario naming only the map)
+  // before it is read; a setting the scenario's reader refuses is reported where the setting
+  // was given
   std::vector<Setting> settings;
 };
 

@@ -247,7 +247,7 @@ Sweep ReadSweep(const std::string& path) {
     for (const std::vector<Setting>& cell : cells) {
       for (const std::string& value : sweep.grid[k].second) {
         std::vector<Setting> next = cell;
-        next.push_back({sweep.grid[k].first, value, {path, grid_lines[k]}});
+        next.push_back({sweep.grid[k].first, value, {path, grid_lines[k]}, ""});
         grown.push_back(std::move(next));
       }
     }

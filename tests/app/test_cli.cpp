@@ -224,8 +224,11 @@ TEST_CASE("fly checks every option before any work: nothing is planned or writte
       {{"--speed", "-1"}, "--speed:"},
       {{"--quality", "ugly"}, "--quality: expected fast or pretty"},
       {{"--wind", "3,0"}, "--wind: expected three numbers X,Y,Z in m/s"},
-      {{"--wind", "60,0,0"}, "--wind: expected at most 50 m/s"},
-      {{"--turbulence", "-2"}, "--turbulence: expected 0 to 20 m/s"}};
+      // the flags that stand for scenario keys are refused with the keys' own ranges
+      {{"--wind", "60,0,0"}, "--wind: wind.mean[0]: expected a number from -50 to 50"},
+      {{"--turbulence", "-2"}, "--turbulence: expected a number from 0 to 20"},
+      {{"--max-speed", "fast"}, "--max-speed: expected a number from 0.01 to 8"},
+      {{"--objective", "fastest"}, "--objective: expected \"min-time\" or \"snap\""}};
   for (const auto& [extra, message] : cases) {
     std::vector<std::string> args = {"fly",   room,      "--start", "1,1,0", "--goal",
                                      "5,1,1", "--quiet", "--out",   out};
@@ -358,12 +361,12 @@ TEST_CASE("fly: --max-speed, --max-accel, --telemetry-rate, --playback, scenario
             .err.find("--telemetry-rate: must divide the controller's rate, 250 Hz") !=
         std::string::npos);
   CHECK(Aerobox({"fly", slow, "--no-video", "--quiet", "--out", out, "--max-speed", "20"})
-            .err.find("--max-speed: expected 0.01 to 8 m/s") != std::string::npos);
+            .err.find("--max-speed: expected a number from 0.01 to 8") != std::string::npos);
   // 0 is a value like any other, not "unset": refused as a scenario refuses it
   const Run zero =
       Aerobox({"fly", slow, "--no-video", "--quiet", "--out", out, "--max-speed", "0"});
   CHECK(zero.code == 2);
-  CHECK(zero.err.find("--max-speed: expected 0.01 to 8 m/s") != std::string::npos);
+  CHECK(zero.err.find("--max-speed: expected a number from 0.01 to 8") != std::string::npos);
   CHECK(Aerobox({"plan", slow, "--out", out, "--max-accel", "0"}).code == 2);
   // a Crazyflie's own top speed bounds it, not the Tello's
   CHECK(Aerobox({"plan", slow, "--out", out, "--set", "vehicle.kind=\"crazyflie\"", "--max-speed",
@@ -644,6 +647,37 @@ TEST_CASE("limits the vehicle cannot follow are said before the flight and in th
   CHECK(snap_summary["accel_limit_mps2"] == 2.0);
   CHECK(snap_summary["trajectory_max_speed_mps"].get<double>() <= 2.0 * 1.005);
   CHECK(Aerobox({"fly", maze, "--objective", "fastest"}).code == kExitBadInput);
+}
+
+}  // namespace aerobox
+
+namespace aerobox {
+
+TEST_CASE("--set works on a bare map, and the flags are --set in other words") {
+  const TempDir dir;
+  const std::string room = dir.Write("room.txt", "boundary 0 0 0 6 6 2\n");
+  const auto plan = [&](const std::string& name, std::vector<std::string> extra) {
+    std::vector<std::string> args = {"plan",   room,    "--start", "1,1,1",
+                                     "--goal", "5,5,1", "--out",   (dir.path() / name).string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const Run run = Aerobox(args);
+    CAPTURE(run.err);
+    CHECK(run.code == 0);
+    return testing::ReadFile(dir.path() / name / "trajectory.csv");
+  };
+  // the same key, as --set and as its flag, on a map with no scenario: the same trajectory
+  const std::string set = plan("set", {"--set", "trajectory.max_speed=1.0"});
+  CHECK(set == plan("flag", {"--max-speed", "1.0"}));
+  CHECK(set != plan("plain", {}));
+  // a key the map alone cannot have is named as the setting
+  const Run bad = Aerobox({"plan", room, "--set", "planner.max_stepp=0.5"});
+  CHECK(bad.code == kExitBadInput);
+  CHECK(bad.err.find("planner.max_stepp: in ") != std::string::npos);
+  CHECK(bad.err.find("did you mean max_step?") != std::string::npos);
+  // --trajectory given needs the scenario's trajectory file, as trajectory.method does
+  const Run given = Aerobox({"fly", room, "--no-video", "--trajectory", "given"});
+  CHECK(given.code == kExitBadInput);
+  CHECK(given.err.find("--trajectory: \"given\" needs the trajectory's file") != std::string::npos);
 }
 
 }  // namespace aerobox

@@ -390,10 +390,11 @@ TEST_CASE("wind brings drag and the drag feed-forward unless the scenario says o
       load("[aero]\ndrag = true\n[controller]\ndrag_feedforward = false\n");
   CHECK(no_feedforward.aero.Enabled());
   CHECK_FALSE(no_feedforward.controller.drag_feedforward);
-  // the command line's --wind and --turbulence
+  // the command line's --wind and --turbulence: settings of the [wind] keys
   SetupOverrides overrides;
-  overrides.wind_mean = Vec3(0, 4, 0);
-  overrides.turbulence = 1.5;
+  overrides.settings = {{"wind.mean", "[0, 4, 0]", {"command line", 0}, "--wind"},
+                        {"wind.turbulence", "\"dryden\"", {"command line", 0}, "--turbulence"},
+                        {"wind.intensity", "1.5", {"command line", 0}, "--turbulence"}};
   const FlightSetup cli =
       LoadFlightSetupFromText("map = \"m.json\"\n", (dir.path() / "s.toml").string(), overrides);
   CHECK(cli.wind.mean == Vec3(0, 4, 0));
