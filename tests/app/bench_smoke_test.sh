@@ -23,7 +23,9 @@ open(sys.argv[1], "w").write("\n".join(rows) + "\n")
 PY
 
 cd "$top"
-"$aerobox" bench --smoke --city "$work/city.csv" > "$work/tables.md" 2> "$work/progress.txt" ||
+# (a sanitizer build: the python3 the Python section starts needs the sanitizers' runtime first)
+LD_PRELOAD="${AEROBOX_PYTHON_PRELOAD:-}" \
+  "$aerobox" bench --smoke --city "$work/city.csv" > "$work/tables.md" 2> "$work/progress.txt" ||
   { cat "$work/tables.md" "$work/progress.txt"; echo "FAIL: aerobox bench --smoke failed"; exit 1; }
 for heading in "Minimum snap" "The video path" "Closed loop" "Flight time" "A Python controller" \
   "Robustness" "Replanning" "Sweep throughput" "City scale" "RRT\*"; do

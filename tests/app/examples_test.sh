@@ -21,7 +21,9 @@ if "```python\n" + example + "```\n" not in readme:
     sys.exit("FAIL: README.md's Python block is not examples/python/fly_mine.py")
 PY
 
-PYTHONPATH=$package PYTHONDONTWRITEBYTECODE=1 /usr/bin/python3 examples/python/fly_mine.py \
+# (a sanitizer build: python3 needs the sanitizers' runtime first, tests/CMakeLists.txt)
+LD_PRELOAD="${AEROBOX_PYTHON_PRELOAD:-}" PYTHONPATH=$package PYTHONDONTWRITEBYTECODE=1 \
+  /usr/bin/python3 examples/python/fly_mine.py \
   "$work/mine" > "$work/mine.txt"
 grep -q "^reached goal " "$work/mine.txt" || { cat "$work/mine.txt"; exit 1; }
 [ -s "$work/mine/summary.json" ] && [ -s "$work/mine/video.mp4" ] ||
