@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "common/types.h"
-#include "planning/rrt_star.h"
+#include "planning/plan_result.h"
 #include "planning/validity.h"
 
 namespace aerobox {

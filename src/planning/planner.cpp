@@ -6,6 +6,23 @@
 #include "planning/path_simplify.h"
 
 namespace aerobox {
+
+const char* ToString(PlanStatus status) {
+  switch (status) {
+    case PlanStatus::kSolved:
+      return "solved";
+    case PlanStatus::kNoPathWithinBudget:
+      return "no path within budget";
+    case PlanStatus::kStartInvalid:
+      return "start invalid";
+    case PlanStatus::kGoalInvalid:
+      return "goal invalid";
+    case PlanStatus::kPathBlocked:
+      return "the given path is not free";
+  }
+  return "?";
+}
+
 namespace {
 
 // Halvings of a blocked leg to find where it first leaves free space: 2^-20 of its length

@@ -11,8 +11,9 @@
 #include <vector>
 
 #include "common/registry.h"
-#include "planning/lattice_planner.h"
-#include "planning/rrt_star.h"
+#include "planning/lattice_planner.h"  // LatticeParams, for PlannerConfig
+#include "planning/plan_result.h"
+#include "planning/rrt_star.h"  // RrtStarParams, for PlannerConfig
 #include "planning/validity.h"
 
 namespace aerobox {

@@ -302,22 +302,6 @@ void RrtStarParams::Validate() const {
   if (shortcut_attempts < 0) fail("shortcut_attempts", shortcut_attempts);
 }
 
-const char* ToString(PlanStatus status) {
-  switch (status) {
-    case PlanStatus::kSolved:
-      return "solved";
-    case PlanStatus::kNoPathWithinBudget:
-      return "no path within budget";
-    case PlanStatus::kStartInvalid:
-      return "start invalid";
-    case PlanStatus::kGoalInvalid:
-      return "goal invalid";
-    case PlanStatus::kPathBlocked:
-      return "the given path is not free";
-  }
-  return "?";
-}
-
 PlanResult PlanRrtStar(const Vec3& start, const Vec3& goal, const Aabb& bounds,
                        const Validity& validity, const RrtStarParams& params) {
   params.Validate();
