@@ -100,9 +100,13 @@ void AddReplanner(const FlightSetup& setup, const PlanOutcome& plan,
   goals.push_back(plan.goal.used);
   PlannerConfig planner = PlannerConfigFor(setup);
   if (planner.kind == "waypoints") planner.kind = "rrt_star";
+  GeneratorConfig generator;  // the flight's, as TrajectoryAlong makes it
+  generator.method = setup.planning.trajectory_method;
+  generator.params = TrajectoryParamsFor(setup);
+  generator.given = setup.planning.given_trajectory;
   replanner->emplace(setup.map, setup.unknown, setup.PlannerCollision(),
-                     setup.TrajectoryCollision(), planner, TrajectoryParamsFor(setup),
-                     setup.sensing, setup.replan, goals, plan.result.path, setup.seed);
+                     setup.TrajectoryCollision(), planner, generator, setup.sensing, setup.replan,
+                     goals, plan.result.path, setup.seed);
   loop->update_reference = [replanner](double t, double tr, const State& state, int reached,
                                        const Reference& current) {
     return (*replanner)->Update(t, tr, state, reached, current);

@@ -141,7 +141,7 @@ bool SeesBox(const SensingParams& sensing, const State& state, const Aabb& box) 
 
 Replanner::Replanner(const Map& map, const std::vector<bool>& unknown,
                      const CollisionParams& planning, const CollisionParams& trajectory,
-                     const PlannerConfig& planner, const TrajectoryParams& params,
+                     const PlannerConfig& planner, const GeneratorConfig& generator,
                      const SensingParams& sensing, const ReplanParams& replan,
                      std::vector<Vec3> goals, std::vector<Vec3> path, std::uint64_t seed)
     : map_(map),
@@ -150,7 +150,9 @@ Replanner::Replanner(const Map& map, const std::vector<bool>& unknown,
       planning_(planning),
       trajectory_(trajectory),
       planner_(planner),
-      params_(params),
+      params_(generator.params),
+      generator_(MakeGenerator(generator)),
+      minsnap_(MakeGenerator({"minsnap", generator.params, {}})),
       sensing_(sensing),
       replan_(replan),
       goals_(std::move(goals)),
@@ -332,8 +334,7 @@ std::optional<Reference> Replanner::Replan(double t, double tr, int goals_reache
   if (found) {
     event.path_length = PathLength(path);
     const Clock::time_point solving = Clock::now();
-    const TrajectoryResult next =
-        ContinueTrajectory(start, path, ViewOf(*trajectory_world_), params_);
+    const TrajectoryResult next = Continue(start, path);
     event.solve_time = Seconds(solving);
     if (next.status == TrajectoryStatus::kSolved) {
       braking_ = false;
@@ -362,7 +363,7 @@ std::optional<Reference> Replanner::Replan(double t, double tr, int goals_reache
   for (const double factor : {1.0, 1.6, 2.5, 0.7, 0.5}) {
     const Vec3 stop = start.p_W + std::max(0.05, factor * distance) * direction;
     if (!trajectory_world_->IsSegmentFree(start.p_W, stop)) continue;
-    brake = ContinueTrajectory(start, {start.p_W, stop}, ViewOf(*trajectory_world_), params_);
+    brake = Continue(start, {start.p_W, stop});
     if (brake.status == TrajectoryStatus::kSolved) break;
   }
   if (brake.status != TrajectoryStatus::kSolved) {
@@ -371,6 +372,12 @@ std::optional<Reference> Replanner::Replan(double t, double tr, int goals_reache
   replaced_by(brake.trajectory);
   return done(Splice(current, th, brake.trajectory),
               found ? "braking (no trajectory)" : "braking (no path)");
+}
+
+TrajectoryResult Replanner::Continue(const StartState& start, const std::vector<Vec3>& path) const {
+  const TrajectoryWorld view = ViewOf(*trajectory_world_);
+  if (std::optional<TrajectoryResult> next = generator_->Continue(start, path, view)) return *next;
+  return *minsnap_->Continue(start, path, view);
 }
 
 }  // namespace aerobox

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "map/map.h"
 #include "mission/flight.h"
 #include "planning/planner.h"
+#include "trajectory/generators.h"
 #include "trajectory/trajectory_generator.h"
 
 namespace aerobox {
@@ -93,7 +95,8 @@ bool SeesBox(const SensingParams& sensing, const State& state, const Aabb& box);
 class Replanner {
  public:
   // `planning` and `trajectory`: the collision parameters of the planner and of trajectories;
-  // `planner` (through the Planner seam: a user's planner replans too) and `params` as the
+  // `planner` (through the Planner seam: a user's planner replans too) and `generator` (through
+  // the TrajectoryGenerator seam's Continue; min-snap's when it cannot start in motion) as the
   // flight's planning uses them, RRT*'s counts replaced by [replan]'s; `goals`: the mission's
   // goals in order, the last one where the reference ends; `path`: the planned path the
   // reference flies. A blocked path is repaired locally first: the planner from the vehicle's
@@ -101,7 +104,7 @@ class Replanner {
   // then the rest; only when that fails, the planner through all the goals still ahead.
   Replanner(const Map& map, const std::vector<bool>& unknown, const CollisionParams& planning,
             const CollisionParams& trajectory, const PlannerConfig& planner,
-            const TrajectoryParams& params, const SensingParams& sensing,
+            const GeneratorConfig& generator, const SensingParams& sensing,
             const ReplanParams& replan, std::vector<Vec3> goals, std::vector<Vec3> path,
             std::uint64_t seed);
 
@@ -120,6 +123,8 @@ class Replanner {
  private:
   std::optional<Reference> Replan(double t, double tr, int goals_reached, const Reference& current,
                                   const std::string& trigger);
+  // The trajectory from `start` along `path`, through the seam.
+  TrajectoryResult Continue(const StartState& start, const std::vector<Vec3>& path) const;
 
   Map map_;
   std::vector<bool> unknown_;
@@ -127,7 +132,9 @@ class Replanner {
   CollisionParams planning_;
   CollisionParams trajectory_;
   PlannerConfig planner_;
-  TrajectoryParams params_;
+  TrajectoryParams params_;                         // the generator's
+  std::unique_ptr<TrajectoryGenerator> generator_;  // the flight's
+  std::unique_ptr<TrajectoryGenerator> minsnap_;    // where the flight's cannot start in motion
   SensingParams sensing_;
   ReplanParams replan_;
   std::vector<Vec3> goals_;

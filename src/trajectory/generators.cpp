@@ -37,6 +37,10 @@ class MinSnapGenerator : public TrajectoryGenerator {
   TrajectoryResult Generate(const std::vector<Vec3>& path, const TrajectoryWorld& world) override {
     return MinSnapWithFallback(path, world, params_);
   }
+  std::optional<TrajectoryResult> Continue(const StartState& start, const std::vector<Vec3>& path,
+                                           const TrajectoryWorld& world) override {
+    return ContinueTrajectory(start, path, world, params_);
+  }
 
  private:
   TrajectoryParams params_;

@@ -7,6 +7,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,15 @@ class TrajectoryGenerator {
   // the trajectory starts and ends at rest. Never throws for a path it cannot follow: a status.
   virtual TrajectoryResult Generate(const std::vector<Vec3>& path,
                                     const TrajectoryWorld& world) = 0;
+  // From a state in motion (replanning: the setpoint where the new trajectory takes over) along
+  // `path`, whose first point is start.p_W, to rest at its end. Nothing when the generator
+  // cannot start in motion (the baselines, a given trajectory): the replanner then continues
+  // with min-snap's.
+  virtual std::optional<TrajectoryResult> Continue(const StartState& /*start*/,
+                                                   const std::vector<Vec3>& /*path*/,
+                                                   const TrajectoryWorld& /*world*/) {
+    return std::nullopt;
+  }
 };
 
 struct GeneratorConfig {

@@ -7,6 +7,7 @@
 #include "mission/mission.h"
 #include "mission/replanning.h"
 #include "planning/planner.h"
+#include "trajectory/generators.h"
 
 namespace aerobox {
 namespace {
@@ -139,6 +140,49 @@ TEST_CASE("replanning goes through the planner seam: a planner registered by a t
   CHECK(result.replans.back().outcome.find("replanned") != std::string::npos);
   // the first plan, and the replan's queries: the test's planner made the new path
   CHECK(counted_plans >= 2);
+}
+
+namespace {
+
+int counted_continues = 0;  // calls of the test's generator's Continue
+
+// A trajectory generator of the test's own: min-snap through the seam, counting continuations.
+class CountingGenerator : public TrajectoryGenerator {
+ public:
+  explicit CountingGenerator(std::unique_ptr<TrajectoryGenerator> inner)
+      : inner_(std::move(inner)) {}
+  TrajectoryResult Generate(const std::vector<Vec3>& path, const TrajectoryWorld& world) override {
+    return inner_->Generate(path, world);
+  }
+  std::optional<TrajectoryResult> Continue(const StartState& start, const std::vector<Vec3>& path,
+                                           const TrajectoryWorld& world) override {
+    ++counted_continues;
+    return inner_->Continue(start, path, world);
+  }
+
+ private:
+  std::unique_ptr<TrajectoryGenerator> inner_;
+};
+
+}  // namespace
+
+TEST_CASE("replanning goes through the generator seam: a generator registered by a test replans") {
+  TrajectoryGenerators().Register("counting_continue", [](const GeneratorConfig& config) {
+    GeneratorConfig minsnap = config;
+    minsnap.method = "minsnap";
+    return std::unique_ptr<TrajectoryGenerator>(
+        std::make_unique<CountingGenerator>(MakeGenerator(minsnap)));
+  });
+  FlightSetup setup = RoomSetup(3);
+  setup.planning.trajectory_method = "counting_continue";
+  counted_continues = 0;
+  const MissionResult result = RunMission(setup, MissionParts());
+  CAPTURE(ToString(result.flight.status));
+  REQUIRE(result.status == MissionStatus::kReachedGoal);
+  REQUIRE_FALSE(result.replans.empty());
+  CHECK(result.replans.back().outcome.find("replanned") != std::string::npos);
+  // the replan's new trajectory came from the test's generator
+  CHECK(counted_continues >= 1);
 }
 
 }  // namespace aerobox
