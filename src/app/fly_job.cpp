@@ -64,10 +64,7 @@ void ValidateFlyOptions(const FlyOptions& options) {
 namespace {
 
 // Flies and writes the outputs into `output`'s staging folder; RunFly commits them.
-int FlyInto(const OutputFolder& output, const FlightSetup& setup, const FlyOptions& options,
-            std::ostream& out, std::ostream& err) {
-  ValidateFlyOptions(options);
-  const std::string& folder = output.staging();
+RenderOptions RenderOptionsFor(const FlyOptions& options) {
   RenderOptions render;
   render.width = options.width;
   render.height = options.height;
@@ -79,36 +76,48 @@ int FlyInto(const OutputFolder& output, const FlightSetup& setup, const FlyOptio
   render.speed = options.speed;
   render.frames_every = options.frames_every;
   render.show_tree = options.show_tree;
+  return render;
+}
 
-  // the outputs, each an observer of the run
-  const int every =
-      options.telemetry_rate > 0
-          ? static_cast<int>(std::lround(setup.controller.rate / options.telemetry_rate))
-          : 1;
-  CsvOutputs csv(folder, every, TelemetryExtrasFor(setup), options.telemetry);
-  // no pictures asked for: no renderer either (a sweep's runs save its set-up)
+// A run's outputs in its staging folder, each an observer of the run.
+struct FlyOutputs {
+  FlyOutputs(const std::string& folder, const FlightSetup& setup, const FlyOptions& options,
+             std::ostream& err)
+      : every(options.telemetry_rate > 0
+                  ? static_cast<int>(std::lround(setup.controller.rate / options.telemetry_rate))
+                  : 1),
+        csv(folder, every, TelemetryExtrasFor(setup), options.telemetry) {
+    parts.observers = {&csv};
+    // no pictures asked for: no renderer either (a sweep's runs save its set-up)
+    if (options.video || options.overview || options.frames_every > 0) {
+      pictures.emplace(folder, setup, RenderOptionsFor(options), err);
+      parts.observers.push_back(&*pictures);
+    }
+    if (options.report) {
+      report.emplace(folder, setup);
+      parts.observers.push_back(&*report);
+    }
+    if (options.progress) {
+      phases.emplace("fly " + setup.name, err);
+      parts.observers.push_back(&*phases);
+    }
+    if (options.video && options.progress && isatty(STDERR_FILENO)) {
+      progress.emplace(&*pictures, err);
+      parts.observers.push_back(&*progress);
+    }
+  }
+  int video_frames() const { return pictures ? pictures->video_frames() : 0; }
+
+  int every;  // control steps per telemetry row
+  CsvOutputs csv;
   std::optional<RenderOutputs> pictures;
-  if (options.video || options.overview || options.frames_every > 0) {
-    pictures.emplace(folder, setup, render, err);
-  }
-  std::optional<ProgressLine> progress;
-  std::optional<PhaseLines> phases;
-  MissionParts parts;
-  parts.observers = {&csv};
-  if (pictures) parts.observers.push_back(&*pictures);
   std::optional<ReportOutputs> report;
-  if (options.report) {
-    report.emplace(folder, setup);
-    parts.observers.push_back(&*report);
-  }
-  if (options.progress) {
-    phases.emplace("fly " + setup.name, err);
-    parts.observers.push_back(&*phases);
-  }
-  if (options.video && options.progress && isatty(STDERR_FILENO)) {
-    progress.emplace(&*pictures, err);
-    parts.observers.push_back(&*progress);
-  }
+  std::optional<PhaseLines> phases;
+  std::optional<ProgressLine> progress;
+  MissionParts parts;
+};
+
+void WarnBeforeFlight(const FlightSetup& setup, std::ostream& err) {
   if (const std::string warning = LimitsWarning(setup); !warning.empty()) {
     err << "aerobox: warning: " << warning << "\n";
   }
@@ -118,59 +127,26 @@ int FlyInto(const OutputFolder& output, const FlightSetup& setup, const FlyOptio
            "held ([flight] yaw = \"hold\"): flying any other way, it sees sideways; yaw = "
            "\"travel\" turns it along the travel\n";
   }
-  FlightSetup recorded = setup;
-  recorded.planning.rrt.record_tree = options.show_tree;
-  if (options.progress) err << "fly " << setup.name << ": planning\n";
-  const MissionResult result = RunMission(recorded, parts);
-  progress.reset();
-  if (result.flown && result.flight.status == FlightStatus::kControllerFailed) {
-    // the user's controller failed: bad input, as a file that does not import is (exit 2, the
-    // folder as it was); its traceback first, as Python prints one, then the message
-    const std::string& kind = setup.controller.kind;
-    const bool python = kind.find(':') != std::string::npos;
-    if (!result.flight.detail.empty()) err << result.flight.detail << "\n";
-    throw InputError({python ? kind.substr(0, kind.rfind(':')) : "", 0},
-                     python ? "--controller" : "controller.kind", result.flight.message);
-  }
+}
 
-  // summary.json and the table
+// The user's controller failed: bad input, as a file that does not import is (exit 2, the
+// folder as it was); its traceback first, as Python prints one, then the message.
+void ThrowIfControllerFailed(const FlightSetup& setup, const MissionResult& result,
+                             std::ostream& err) {
+  if (!result.flown || result.flight.status != FlightStatus::kControllerFailed) return;
+  const std::string& kind = setup.controller.kind;
+  const bool python = kind.find(':') != std::string::npos;
+  if (!result.flight.detail.empty()) err << result.flight.detail << "\n";
+  throw InputError({python ? kind.substr(0, kind.rfind(':')) : "", 0},
+                   python ? "--controller" : "controller.kind", result.flight.message);
+}
+
+// The table's lines of the path, the trajectory and the flight.
+void PlanAndFlightLines(const FlightSetup& setup, const MissionResult& result,
+                        std::ostream& table) {
   const PlanOutcome& plan = result.plan;
-  const auto finish = [&](int code) {
-    const JsonObject summary =
-        RunSummary(setup, result, {every, pictures ? pictures->video_frames() : 0, options.fps});
-    WriteFileAtomically((fs::path(folder) / "summary.json").string(), summary.Text());
-    if (report) {
-      try {
-        report->Write(summary.Text(), options.command.empty()
-                                          ? "aerobox fly " + setup.map.source + " --seed " +
-                                                std::to_string(setup.seed)
-                                          : options.command);
-      } catch (const InputError& e) {
-        // the flight's own files are written: a page that cannot be made is a warning
-        err << "aerobox: warning: no report.html: " << e.what() << "\n";
-      }
-    }
-    return code;
-  };
-  if (result.status == MissionStatus::kNoPath) {
-    out << DescribeMoves(plan.start, plan.goal) << "fly " << setup.name << ": "
-        << ToString(plan.result.status) << "\n";
-    if (plan.result.status == PlanStatus::kPathBlocked) {
-      out << "  " << DescribeBlockedPath(plan) << "\n";
-    }
-    return finish(kExitNoPath);
-  }
   const TrajectoryResult& trajectory = *plan.trajectory;
-  if (result.status == MissionStatus::kNoTrajectory) {
-    out << "fly " << setup.name << ": no trajectory (" << trajectory.stats.solver_message << ")\n";
-    return finish(kExitNoTrajectory);
-  }
   const FlightResult& flight = result.flight;
-  // a flight that reached the goal far from its trajectory did not fly the trajectory
-  const std::string tracking_note = TrackingNote(setup, flight);
-
-  std::ostringstream table;
-  table << std::fixed << std::setprecision(3);
   table << "fly " << setup.name << " (seed " << setup.seed << ")\n"
         << DescribeMoves(plan.start, plan.goal) << "  path        " << PathLength(plan.result.path)
         << " m, " << plan.result.path.size() << " waypoints, planned in "
@@ -199,41 +175,47 @@ int FlyInto(const OutputFolder& output, const FlightSetup& setup, const FlyOptio
         << result.flight_wall_time << " s wall)";
   if (!flight.obstacle.empty()) table << ", hit " << flight.obstacle;
   if (!flight.message.empty()) table << ": " << flight.message;
-  if (!plan.via.empty()) {
-    // a mission: each goal and when it was reached
-    const size_t goals = plan.via.size() + 1;
-    const size_t reached =
-        flight.goal_times.size() + (flight.status == FlightStatus::kReachedGoal ? 1 : 0);
-    table << "\n  goals       " << reached << " of " << goals << " reached";
-    for (size_t i = 0; i < goals; ++i) {
-      table << (i == 0 ? ": " : ", ") << i + 1 << " ";
-      if (i < flight.goal_times.size()) {
-        table << "at " << flight.goal_times[i] << " s";
-      } else if (i + 1 == goals && flight.status == FlightStatus::kReachedGoal) {
-        table << "at " << flight.time << " s";
-      } else {
-        table << "not reached";
-      }
+}
+
+// A mission's line: each goal and when it was reached.
+void GoalsLine(const FlightSetup& setup, const MissionResult& result, std::ostream& table) {
+  const FlightResult& flight = result.flight;
+  const size_t goals = result.plan.via.size() + 1;
+  const size_t reached =
+      flight.goal_times.size() + (flight.status == FlightStatus::kReachedGoal ? 1 : 0);
+  table << "\n  goals       " << reached << " of " << goals << " reached";
+  for (size_t i = 0; i < goals; ++i) {
+    table << (i == 0 ? ": " : ", ") << i + 1 << " ";
+    if (i < flight.goal_times.size()) {
+      table << "at " << flight.goal_times[i] << " s";
+    } else if (i + 1 == goals && flight.status == FlightStatus::kReachedGoal) {
+      table << "at " << flight.time << " s";
+    } else {
+      table << "not reached";
     }
-    if (setup.stop_at_goals) table << " (stopping at each)";
   }
+  if (setup.stop_at_goals) table << " (stopping at each)";
+}
+
+void DiscoveryLine(const MissionResult& result, std::ostream& table) {
+  table << "\n  discovery   " << result.revealed_boxes << " of " << result.unknown_boxes
+        << " unknown boxes revealed; " << result.replans.size() << " replan(s)";
+  for (const ReplanEvent& e : result.replans) {
+    table << "; at " << e.t << " s (" << e.trigger << "): " << e.outcome << " in "
+          << std::setprecision(1) << 1e3 * e.latency << " ms" << std::setprecision(4);
+    if (e.time_capped) {
+      table << " (cut by [replan] time_budget: not reproducible by seed)";
+    }
+  }
+}
+
+void SpeedAndTrackingLines(const FlightResult& flight, std::ostream& table) {
   // tracking errors of a millimetre or less: three significant digits, not "0.000 m"
   const auto metres = [](double value) {
     std::ostringstream text;
     text << std::setprecision(3) << value << " m";
     return text.str();
   };
-  if (setup.HasUnknown()) {
-    table << "\n  discovery   " << result.revealed_boxes << " of " << result.unknown_boxes
-          << " unknown boxes revealed; " << result.replans.size() << " replan(s)";
-    for (const ReplanEvent& e : result.replans) {
-      table << "; at " << e.t << " s (" << e.trigger << "): " << e.outcome << " in "
-            << std::setprecision(1) << 1e3 * e.latency << " ms" << std::setprecision(4);
-      if (e.time_capped) {
-        table << " (cut by [replan] time_budget: not reproducible by seed)";
-      }
-    }
-  }
   table << "\n  speed       " << std::setprecision(2) << flight.AverageSpeed()
         << " m/s on average, " << flight.top_speed << " m/s at most; rotors at most "
         << std::setprecision(0) << 100 * flight.peak_rotor_fraction
@@ -246,17 +228,81 @@ int FlyInto(const OutputFolder& output, const FlightSetup& setup, const FlyOptio
   } else {
     table << "none (no obstacles)\n";
   }
+}
+
+// The table a flown run prints.
+std::string FlightTable(const OutputFolder& output, const FlightSetup& setup,
+                        const FlyOptions& options, const MissionResult& result, int video_frames) {
+  std::ostringstream table;
+  table << std::fixed << std::setprecision(3);
+  PlanAndFlightLines(setup, result, table);
+  if (!result.plan.via.empty()) GoalsLine(setup, result, table);
+  if (setup.HasUnknown()) DiscoveryLine(result, table);
+  SpeedAndTrackingLines(result.flight, table);
   table << "  files       " << output.path()
         << (options.telemetry ? "/{path,trajectory,telemetry}.csv" : "/{path,trajectory}.csv")
         << ", summary.json" << (options.overview ? ", overview.png" : "")
         << (options.report ? ", report.html" : "")
-        << (options.video ? ", video.mp4 (" + std::to_string(pictures->video_frames()) + " frames)"
+        << (options.video ? ", video.mp4 (" + std::to_string(video_frames) + " frames)"
                           : std::string())
         << "\n";
-  if (!tracking_note.empty()) table << "  warning     " << tracking_note << "\n";
-  out << table.str();
-  return finish(result.status == MissionStatus::kReachedGoal ? kExitReachedGoal
-                                                             : kExitFlightFailed);
+  // a flight that reached the goal far from its trajectory did not fly the trajectory
+  if (const std::string note = TrackingNote(setup, result.flight); !note.empty()) {
+    table << "  warning     " << note << "\n";
+  }
+  return table.str();
+}
+
+// summary.json, then report.html (a page that cannot be made is a warning: the flight's own
+// files are written).
+void WriteSummaryAndReport(const std::string& folder, const FlightSetup& setup,
+                           const FlyOptions& options, const MissionResult& result,
+                           const FlyOutputs& outputs, std::ostream& err) {
+  const JsonObject summary =
+      RunSummary(setup, result, {outputs.every, outputs.video_frames(), options.fps});
+  WriteFileAtomically((fs::path(folder) / "summary.json").string(), summary.Text());
+  if (!outputs.report) return;
+  try {
+    outputs.report->Write(summary.Text(), options.command.empty()
+                                              ? "aerobox fly " + setup.map.source + " --seed " +
+                                                    std::to_string(setup.seed)
+                                              : options.command);
+  } catch (const InputError& e) {
+    err << "aerobox: warning: no report.html: " << e.what() << "\n";
+  }
+}
+
+int FlyInto(const OutputFolder& output, const FlightSetup& setup, const FlyOptions& options,
+            std::ostream& out, std::ostream& err) {
+  ValidateFlyOptions(options);
+  FlyOutputs outputs(output.staging(), setup, options, err);
+  WarnBeforeFlight(setup, err);
+  FlightSetup recorded = setup;
+  recorded.planning.rrt.record_tree = options.show_tree;
+  if (options.progress) err << "fly " << setup.name << ": planning\n";
+  const MissionResult result = RunMission(recorded, outputs.parts);
+  outputs.progress.reset();
+  ThrowIfControllerFailed(setup, result, err);
+
+  const PlanOutcome& plan = result.plan;
+  int code = kExitFlightFailed;
+  if (result.status == MissionStatus::kNoPath) {
+    out << DescribeMoves(plan.start, plan.goal) << "fly " << setup.name << ": "
+        << ToString(plan.result.status) << "\n";
+    if (plan.result.status == PlanStatus::kPathBlocked) {
+      out << "  " << DescribeBlockedPath(plan) << "\n";
+    }
+    code = kExitNoPath;
+  } else if (result.status == MissionStatus::kNoTrajectory) {
+    out << "fly " << setup.name << ": no trajectory (" << plan.trajectory->stats.solver_message
+        << ")\n";
+    code = kExitNoTrajectory;
+  } else {
+    out << FlightTable(output, setup, options, result, outputs.video_frames());
+    if (result.status == MissionStatus::kReachedGoal) code = kExitReachedGoal;
+  }
+  WriteSummaryAndReport(output.staging(), setup, options, result, outputs, err);
+  return code;
 }
 
 }  // namespace
