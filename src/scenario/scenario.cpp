@@ -786,11 +786,10 @@ FlightSetup LoadFlightSetupFromText(const std::string& text, const std::string& 
 
 namespace {
 
-FlightSetup SetupFrom(const std::string& path, std::optional<Scenario> scenario,
-                      const SetupOverrides& overrides) {
-  FlightSetup setup;
+// The map the set-up flies: the scenario's, or the file itself.
+void ReadSetupMap(const std::string& path, const std::optional<Scenario>& scenario,
+                  FlightSetup* setup) {
   const std::string map_path = scenario ? scenario->map_path : path;
-
   std::string map_text;
   try {
     map_text = ReadTextFile(map_path);
@@ -800,115 +799,157 @@ FlightSetup SetupFrom(const std::string& path, std::optional<Scenario> scenario,
     throw InputError({path, scenario->map_line}, "map", e.what());
   }
   std::istringstream map_stream(map_text);
-  setup.map_format = DetectMapFormat(map_path, map_text.substr(0, 64));
-  setup.map = ReadMap(map_stream, map_path, setup.map_format);
+  setup->map_format = DetectMapFormat(map_path, map_text.substr(0, 64));
+  setup->map = ReadMap(map_stream, map_path, setup->map_format);
   // a scenario names its map: scenes keep their map in a file called map.json
-  if (scenario) setup.map.name = scenario->name;
-  setup.name = setup.map.name;
-  setup.seed = overrides.seed.value_or(scenario ? scenario->seed : 1);
+  if (scenario) setup->map.name = scenario->name;
+  setup->name = setup->map.name;
+}
+
+// The scenario's tables, and the defaults that follow from them.
+void ApplyScenarioTables(const std::optional<Scenario>& scenario, FlightSetup* setup) {
   if (scenario) {
-    setup.planning = scenario->planning;
-    setup.vehicle_kind = scenario->vehicle_kind;
-    setup.vehicle = scenario->vehicle;
-    setup.controller = scenario->controller;
-    setup.flight = scenario->flight;
-    setup.wind = scenario->wind;
-    setup.aero = scenario->aero;
-    setup.sensors = scenario->sensors;
+    setup->planning = scenario->planning;
+    setup->vehicle_kind = scenario->vehicle_kind;
+    setup->vehicle = scenario->vehicle;
+    setup->controller = scenario->controller;
+    setup->flight = scenario->flight;
+    setup->wind = scenario->wind;
+    setup->aero = scenario->aero;
+    setup->sensors = scenario->sensors;
+    setup->stop_at_goals = scenario->stop_at_goals;
+    setup->hold = scenario->hold;
+    setup->sensing = scenario->sensing;
+    setup->replan = scenario->replan;
   }
   // wind moves the vehicle through drag only: it comes with drag unless [aero] says otherwise
-  if (setup.wind.Enabled() && !(scenario && scenario->aero_given)) {
-    setup.aero.body_drag = setup.aero.rotor_drag = true;
+  if (setup->wind.Enabled() && !(scenario && scenario->aero_given)) {
+    setup->aero.body_drag = setup->aero.rotor_drag = true;
   }
   // a controller in drag knows its own: it feeds it forward unless [controller] says not to
   if (!(scenario && scenario->drag_feedforward_given)) {
-    setup.controller.drag_feedforward = setup.aero.Enabled();
+    setup->controller.drag_feedforward = setup->aero.Enabled();
   }
+}
 
-  std::optional<StartGoal> side_file;
-  // the start and goal beside the map: "<map stem>.startgoal.txt", or RBE595's own layout,
-  // maps/mapN.txt with startandgoal/mapN.txt (beside maps/, or inside the map's folder)
+// The start and goal beside the map: "<map stem>.startgoal.txt", or RBE595's own layout,
+// maps/mapN.txt with startandgoal/mapN.txt (beside maps/, or inside the map's folder).
+std::optional<StartGoal> SideFile(const std::string& map_path, fs::path* side_path) {
   const fs::path map_folder = fs::path(map_path).parent_path();
   const std::string stem = fs::path(map_path).stem().string();
-  fs::path side_path = map_folder / (stem + ".startgoal.txt");
+  *side_path = map_folder / (stem + ".startgoal.txt");
   std::error_code ec;
   for (const fs::path& candidate : {map_folder / (stem + ".startgoal.txt"),
                                     map_folder / ".." / "startandgoal" / (stem + ".txt"),
                                     map_folder / "startandgoal" / (stem + ".txt")}) {
     if (fs::is_regular_file(candidate, ec)) {
-      side_path = candidate.lexically_normal();
+      *side_path = candidate.lexically_normal();
       break;
     }
   }
-  if (fs::is_regular_file(side_path, ec)) {
-    std::istringstream text(ReadTextFile(side_path.string()));
-    side_file = ReadStartGoal(text, side_path.string());
-  }
+  if (!fs::is_regular_file(*side_path, ec)) return std::nullopt;
+  std::istringstream text(ReadTextFile(side_path->string()));
+  return ReadStartGoal(text, side_path->string());
+}
 
+// The start (when one is given) and the goals, each from the first place that gives it: the
+// command line, the scenario, the map file, the start/goal file beside it.
+std::optional<Vec3> StartAndGoals(const std::string& path, const std::optional<Scenario>& scenario,
+                                  const SetupOverrides& overrides, FlightSetup* setup) {
+  const std::string& map_path = scenario ? scenario->map_path : path;
+  fs::path side_path;
+  const std::optional<StartGoal> side_file = SideFile(map_path, &side_path);
   const auto from_side_file = [&](bool start) -> std::optional<Vec3> {
     if (!side_file) return std::nullopt;
     return start ? side_file->start : side_file->goal;
   };
   const SourceLocation command_line{"command line", 0};
-  const SourceLocation in_map{map_path, setup.map.start_goal_line};
+  const SourceLocation in_map{map_path, setup->map.start_goal_line};
   const SourceLocation in_side_file{side_path.string(), 0};
-  std::optional<Vec3> start = FirstGiven({{overrides.start, "command line", command_line},
-                                          {scenario ? scenario->start : std::nullopt,
-                                           "scenario",
-                                           {path, scenario ? scenario->start_line : 0}},
-                                          {setup.map.start, "map file", in_map},
-                                          {from_side_file(true), "start/goal file", in_side_file}},
-                                         &setup.start_origin, &setup.start_where);
-  setup.goal = FirstGiven({{overrides.goal, "command line", command_line},
-                           {scenario ? scenario->goal : std::nullopt,
-                            "scenario",
-                            {path, scenario ? scenario->goal_line : 0}},
-                           {setup.map.goal, "map file", in_map},
-                           {from_side_file(false), "start/goal file", in_side_file}},
-                          &setup.goal_origin, &setup.goal_where);
+  const std::optional<Vec3> start =
+      FirstGiven({{overrides.start, "command line", command_line},
+                  {scenario ? scenario->start : std::nullopt,
+                   "scenario",
+                   {path, scenario ? scenario->start_line : 0}},
+                  {setup->map.start, "map file", in_map},
+                  {from_side_file(true), "start/goal file", in_side_file}},
+                 &setup->start_origin, &setup->start_where);
+  setup->goal = FirstGiven({{overrides.goal, "command line", command_line},
+                            {scenario ? scenario->goal : std::nullopt,
+                             "scenario",
+                             {path, scenario ? scenario->goal_line : 0}},
+                            {setup->map.goal, "map file", in_map},
+                            {from_side_file(false), "start/goal file", in_side_file}},
+                           &setup->goal_origin, &setup->goal_where);
   // the mission's goals before the last: the command line's replace the scenario's
   if (overrides.goal) {
-    setup.via = overrides.via;
-  } else if (scenario && setup.goal_origin == "scenario") {
-    setup.via = scenario->via;
+    setup->via = overrides.via;
+  } else if (scenario && setup->goal_origin == "scenario") {
+    setup->via = scenario->via;
   }
-  if (scenario) {
-    setup.stop_at_goals = scenario->stop_at_goals;
-    setup.hold = scenario->hold;
-    setup.sensing = scenario->sensing;
-    setup.replan = scenario->replan;
-    // boxes unknown to the planner: another map's boxes join the scene, unknown; then the
-    // listed indices and the seeded share of the map's own
-    const SourceLocation at{path, scenario->unknown_line};
-    const size_t own = setup.map.boxes.size();
-    if (!scenario->unknown_map.empty()) {
-      std::string text;
-      try {
-        text = ReadTextFile(scenario->unknown_map);
-      } catch (const InputError& e) {
-        throw InputError(at, "unknown_map", e.what());
-      }
-      std::istringstream in(text);
-      const Map extra = ReadMap(in, scenario->unknown_map,
-                                DetectMapFormat(scenario->unknown_map, text.substr(0, 64)));
-      for (Box box : extra.boxes) {
-        box.name = "unknown_" + box.name;
-        setup.map.boxes.push_back(box);
-      }
+  return start;
+}
+
+// Boxes unknown to the planner: another map's boxes join the scene, unknown; then the listed
+// indices and the seeded share of the map's own.
+void AddUnknownBoxes(const std::string& path, const Scenario& scenario, FlightSetup* setup) {
+  const SourceLocation at{path, scenario.unknown_line};
+  const size_t own = setup->map.boxes.size();
+  if (!scenario.unknown_map.empty()) {
+    std::string text;
+    try {
+      text = ReadTextFile(scenario.unknown_map);
+    } catch (const InputError& e) {
+      throw InputError(at, "unknown_map", e.what());
     }
-    if (!scenario->unknown.empty() || scenario->unknown_fraction > 0 ||
-        setup.map.boxes.size() > own) {
-      Map own_boxes = setup.map;
-      own_boxes.boxes.resize(own);
-      try {
-        setup.unknown =
-            UnknownBoxes(own_boxes, scenario->unknown, scenario->unknown_fraction, setup.seed);
-      } catch (const std::invalid_argument& e) {
-        throw InputError(at, "unknown", e.what());
-      }
-      setup.unknown.resize(setup.map.boxes.size(), true);
+    std::istringstream in(text);
+    const Map extra = ReadMap(in, scenario.unknown_map,
+                              DetectMapFormat(scenario.unknown_map, text.substr(0, 64)));
+    for (Box box : extra.boxes) {
+      box.name = "unknown_" + box.name;
+      setup->map.boxes.push_back(box);
     }
   }
+  if (scenario.unknown.empty() && !(scenario.unknown_fraction > 0) &&
+      setup->map.boxes.size() <= own) {
+    return;
+  }
+  Map own_boxes = setup->map;
+  own_boxes.boxes.resize(own);
+  try {
+    setup->unknown =
+        UnknownBoxes(own_boxes, scenario.unknown, scenario.unknown_fraction, setup->seed);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(at, "unknown", e.what());
+  }
+  setup->unknown.resize(setup->map.boxes.size(), true);
+}
+
+// Where the vehicle starts when nothing says: on the floor clear of walls, else (a scene needs
+// no start) at the top of the map, where planning refuses it.
+void DefaultStartOf(const std::string& map_path, FlightSetup* setup) {
+  // 0.3 m keeps the default start clear of walls by more than the vehicle's own size
+  const std::optional<Vec3> fallback =
+      DefaultStart(setup->map, 0.3, 0.5 * setup->vehicle.collision_size.z());
+  setup->start_where = {map_path, 0};
+  if (fallback) {
+    setup->start = *fallback;
+    setup->start_origin = "default";
+  } else {
+    const Aabb& bounds = setup->map.bounds;
+    setup->start = Vec3(bounds.Center().x(), bounds.Center().y(), bounds.max.z());
+    setup->start_origin = kNoStart;
+  }
+}
+
+FlightSetup SetupFrom(const std::string& path, std::optional<Scenario> scenario,
+                      const SetupOverrides& overrides) {
+  FlightSetup setup;
+  ReadSetupMap(path, scenario, &setup);
+  setup.seed = overrides.seed.value_or(scenario ? scenario->seed : 1);
+  ApplyScenarioTables(scenario, &setup);
+  std::optional<Vec3> start = StartAndGoals(path, scenario, overrides, &setup);
+  if (scenario) AddUnknownBoxes(path, *scenario, &setup);
   // a depth camera looks along body x: unless the yaw was chosen, it turns with the travel, or
   // the vehicle would fly sideways into what it cannot see
   if (scenario && !scenario->yaw_given && setup.HasUnknown() &&
@@ -928,19 +969,7 @@ FlightSetup SetupFrom(const std::string& path, std::optional<Scenario> scenario,
   if (start) {
     setup.start = *start;
   } else {
-    // 0.3 m keeps the default start clear of walls by more than the vehicle's own size
-    const std::optional<Vec3> fallback =
-        DefaultStart(setup.map, 0.3, 0.5 * setup.vehicle.collision_size.z());
-    setup.start_where = {map_path, 0};
-    if (fallback) {
-      setup.start = *fallback;
-      setup.start_origin = "default";
-    } else {
-      // a scene needs no start: the vehicle waits at the top of the map; planning refuses it
-      setup.start = Vec3(setup.map.bounds.Center().x(), setup.map.bounds.Center().y(),
-                         setup.map.bounds.max.z());
-      setup.start_origin = kNoStart;
-    }
+    DefaultStartOf(scenario ? scenario->map_path : path, &setup);
   }
   return setup;
 }
