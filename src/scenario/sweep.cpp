@@ -115,132 +115,112 @@ Shard ParseShard(const std::string& text, const std::string& option) {
   return shard;
 }
 
-Sweep ReadSweep(const std::string& path) {
-  const std::string text = ReadTextFile(path);
-  toml::table table;
-  try {
-    table = toml::parse(text, path);
-  } catch (const toml::parse_error& error) {
-    throw InputError({path, static_cast<int>(error.source().begin.line)}, "TOML",
-                     std::string(error.description()));
+namespace {
+
+// `scenarios`: files and globs, each file once; `labels` as the sweep names them.
+void ReadScenarioList(const toml::node& node, const std::string& path, const fs::path& folder,
+                      Sweep* sweep, std::vector<std::string>* labels) {
+  const std::string name = "scenarios";
+  const SourceLocation where{path, LineOf(node)};
+  const toml::array* list = node.as_array();
+  if (list == nullptr || list->empty()) {
+    throw InputError(where, name, "expected a non-empty list of scenario files or globs");
   }
-  Sweep sweep;
-  sweep.file = path;
-  sweep.name = fs::path(path).stem().string();
-  const fs::path folder =
-      fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
-  int grid_line = 0;
-  std::vector<int> grid_lines;
-  bool seeds_given = false;
-  std::vector<std::string> labels;  // per scenario
-  for (const auto& [key, node] : table) {
-    const std::string name(key.str());
-    const SourceLocation where{path, LineOf(node)};
-    if (name == "name") {
-      const std::optional<std::string> value = node.value<std::string>();
-      if (!value || value->empty() || value->find_first_of("/\\") != std::string::npos) {
-        throw InputError(where, name, "expected a non-empty string without '/' (a folder name)");
+  std::set<std::string> seen;
+  for (const toml::node& item : *list) {
+    const std::optional<std::string> pattern = item.value<std::string>();
+    const SourceLocation at{path, LineOf(item)};
+    if (!pattern || pattern->empty()) throw InputError(at, name, "expected a file or glob");
+    for (const std::string& file : Expand(*pattern, folder, at)) {
+      // absolute: a run's summary names its files the same from any folder or host
+      const std::string absolute = fs::absolute(file).lexically_normal().string();
+      if (seen.insert(fs::weakly_canonical(file).string()).second) {
+        sweep->scenarios.push_back(absolute);
+        // the label: as the sweep names it, relative to its folder (or absolute)
+        labels->push_back(fs::path(*pattern).is_absolute()
+                              ? absolute
+                              : fs::path(file)
+                                    .lexically_normal()
+                                    .lexically_relative(folder.lexically_normal())
+                                    .string());
       }
-      sweep.name = *value;
-    } else if (name == "scenarios") {
-      const toml::array* list = node.as_array();
-      if (list == nullptr || list->empty()) {
-        throw InputError(where, name, "expected a non-empty list of scenario files or globs");
-      }
-      std::set<std::string> seen;
-      for (const toml::node& item : *list) {
-        const std::optional<std::string> pattern = item.value<std::string>();
-        const SourceLocation at{path, LineOf(item)};
-        if (!pattern || pattern->empty()) throw InputError(at, name, "expected a file or glob");
-        for (const std::string& file : Expand(*pattern, folder, at)) {
-          // absolute: a run's summary names its files the same from any folder or host
-          const std::string absolute = fs::absolute(file).lexically_normal().string();
-          if (seen.insert(fs::weakly_canonical(file).string()).second) {
-            sweep.scenarios.push_back(absolute);
-            // the label: as the sweep names it, relative to its folder (or absolute)
-            labels.push_back(fs::path(*pattern).is_absolute()
-                                 ? absolute
-                                 : fs::path(file)
-                                       .lexically_normal()
-                                       .lexically_relative(folder.lexically_normal())
-                                       .string());
-          }
-        }
-      }
-    } else if (name == "seeds") {
-      seeds_given = true;
-      if (const std::optional<std::int64_t> count = node.value<std::int64_t>()) {
-        if (*count < 1 || *count > 100000) {
-          throw InputError(where, name, "expected a count from 1 to 100000, or a list of seeds");
-        }
-        for (std::int64_t s = 1; s <= *count; ++s) sweep.seeds.push_back(s);
-      } else if (const toml::array* list = node.as_array(); list && !list->empty()) {
-        std::set<std::uint64_t> seen;
-        for (const toml::node& item : *list) {
-          const std::optional<std::int64_t> seed = item.value<std::int64_t>();
-          if (!seed || *seed < 0) {
-            throw InputError({path, LineOf(item)}, name, "expected non-negative integer seeds");
-          }
-          if (!seen.insert(*seed).second) {
-            throw InputError({path, LineOf(item)}, name,
-                             "seed " + std::to_string(*seed) + " is given twice");
-          }
-          sweep.seeds.push_back(static_cast<std::uint64_t>(*seed));
-        }
-      } else {
-        throw InputError(where, name, "expected a count (5) or a non-empty list of seeds");
-      }
-    } else if (name == "grid") {
-      const toml::table* grid = node.as_table();
-      if (grid == nullptr) throw InputError(where, name, "expected a table [grid]");
-      grid_line = LineOf(node);
-      if (grid->empty()) {
-        throw InputError(where, "grid",
-                         "the grid is empty: give a scenario key and its values, "
-                         "\"trajectory.max_speed\" = [2.0, 4.0], or leave [grid] out");
-      }
-      for (const auto& [grid_key, values] : *grid) {
-        const std::string field = "grid." + std::string(grid_key.str());
-        const SourceLocation at{path, LineOf(values)};
-        const std::string scenario_key(grid_key.str());
-        if (scenario_key == "seed") {
-          throw InputError(at, field, "the sweep's seeds come from `seeds`, not the grid");
-        }
-        if (scenario_key == "name") {
-          throw InputError(at, field, "a run's name is its id: the grid cannot set it");
-        }
-        const toml::array* list = values.as_array();
-        if (list == nullptr || list->empty()) {
-          throw InputError(at, field,
-                           "expected a non-empty list of values, e.g. [2.0, 4.0] (one value: "
-                           "[2.0])");
-        }
-        std::vector<std::string> texts;
-        std::set<std::string> seen;
-        for (const toml::node& value : *list) {
-          texts.push_back(ValueText(value, {path, LineOf(value)}, field));
-          if (!seen.insert(texts.back()).second) {
-            throw InputError({path, LineOf(value)}, field, texts.back() + " is given twice");
-          }
-        }
-        sweep.grid.emplace_back(scenario_key, texts);
-        grid_lines.push_back(LineOf(values));
-      }
-    } else if (name == "keep") {
-      const toml::table* keep = node.as_table();
-      if (keep == nullptr) throw InputError(where, name, "expected a table [keep]");
-      toml_read::ReadFields(*keep, path, "keep.", &sweep.keep);
-    } else {
-      const std::string nearest = NearestName(name, {"name", "scenarios", "seeds", "grid", "keep"});
-      throw InputError(where, name,
-                       "unknown key (expected name, scenarios, seeds, [grid] or [keep])" +
-                           (nearest.empty() ? "" : "; did you mean " + nearest + "?"));
     }
   }
-  if (sweep.scenarios.empty()) throw InputError({path, 1}, "scenarios", "missing key");
-  if (!seeds_given) sweep.seeds = {1};
+}
 
-  // every cell of the grid, the first key varying slowest
+// `seeds`: a count, or a list of distinct seeds.
+void ReadSeeds(const toml::node& node, const std::string& path, Sweep* sweep) {
+  const std::string name = "seeds";
+  const SourceLocation where{path, LineOf(node)};
+  if (const std::optional<std::int64_t> count = node.value<std::int64_t>()) {
+    if (*count < 1 || *count > 100000) {
+      throw InputError(where, name, "expected a count from 1 to 100000, or a list of seeds");
+    }
+    for (std::int64_t s = 1; s <= *count; ++s) sweep->seeds.push_back(s);
+  } else if (const toml::array* list = node.as_array(); list && !list->empty()) {
+    std::set<std::uint64_t> seen;
+    for (const toml::node& item : *list) {
+      const std::optional<std::int64_t> seed = item.value<std::int64_t>();
+      if (!seed || *seed < 0) {
+        throw InputError({path, LineOf(item)}, name, "expected non-negative integer seeds");
+      }
+      if (!seen.insert(*seed).second) {
+        throw InputError({path, LineOf(item)}, name,
+                         "seed " + std::to_string(*seed) + " is given twice");
+      }
+      sweep->seeds.push_back(static_cast<std::uint64_t>(*seed));
+    }
+  } else {
+    throw InputError(where, name, "expected a count (5) or a non-empty list of seeds");
+  }
+}
+
+// [grid]: scenario keys, each with its values as TOML text; `lines`: each key's line.
+void ReadGrid(const toml::node& node, const std::string& path, Sweep* sweep,
+              std::vector<int>* lines) {
+  const std::string name = "grid";
+  const SourceLocation where{path, LineOf(node)};
+  const toml::table* grid = node.as_table();
+  if (grid == nullptr) throw InputError(where, name, "expected a table [grid]");
+  if (grid->empty()) {
+    throw InputError(where, "grid",
+                     "the grid is empty: give a scenario key and its values, "
+                     "\"trajectory.max_speed\" = [2.0, 4.0], or leave [grid] out");
+  }
+  for (const auto& [grid_key, values] : *grid) {
+    const std::string field = "grid." + std::string(grid_key.str());
+    const SourceLocation at{path, LineOf(values)};
+    const std::string scenario_key(grid_key.str());
+    if (scenario_key == "seed") {
+      throw InputError(at, field, "the sweep's seeds come from `seeds`, not the grid");
+    }
+    if (scenario_key == "name") {
+      throw InputError(at, field, "a run's name is its id: the grid cannot set it");
+    }
+    const toml::array* list = values.as_array();
+    if (list == nullptr || list->empty()) {
+      throw InputError(at, field,
+                       "expected a non-empty list of values, e.g. [2.0, 4.0] (one value: "
+                       "[2.0])");
+    }
+    std::vector<std::string> texts;
+    std::set<std::string> seen;
+    for (const toml::node& value : *list) {
+      texts.push_back(ValueText(value, {path, LineOf(value)}, field));
+      if (!seen.insert(texts.back()).second) {
+        throw InputError({path, LineOf(value)}, field, texts.back() + " is given twice");
+      }
+    }
+    sweep->grid.emplace_back(scenario_key, texts);
+    lines->push_back(LineOf(values));
+  }
+}
+
+// Every cell of the grid, the first key varying slowest.
+std::vector<std::vector<Setting>> GridCells(const Sweep& sweep, const std::vector<int>& lines,
+                                            int grid_line) {
+  const std::string& path = sweep.file;
+  const std::vector<int>& grid_lines = lines;
   std::vector<std::vector<Setting>> cells = {{}};
   for (size_t k = 0; k < sweep.grid.size(); ++k) {
     std::vector<std::vector<Setting>> grown;
@@ -258,10 +238,17 @@ Sweep ReadSweep(const std::string& path) {
     }
   }
 
-  // each run's set-up, loaded once: a setting the scenario refuses is reported at its grid line
+  return cells;
+}
+
+// Each run, its set-up loaded once: a setting the scenario refuses is reported at its grid
+// line.
+void ExpandRuns(const std::vector<std::vector<Setting>>& cells,
+                const std::vector<std::string>& labels, Sweep* sweep) {
+  const std::string& path = sweep->file;
   std::set<std::string> ids;
-  for (size_t k = 0; k < sweep.scenarios.size(); ++k) {
-    const std::string& scenario = sweep.scenarios[k];
+  for (size_t k = 0; k < sweep->scenarios.size(); ++k) {
+    const std::string& scenario = sweep->scenarios[k];
     const std::string& label = labels[k];
     LoadFlightSetup(scenario, SetupOverrides());  // the scenario's own errors, at its own lines
     for (const std::vector<Setting>& cell : cells) {
@@ -274,22 +261,75 @@ Sweep ReadSweep(const std::string& path) {
         throw InputError({path, cell.empty() ? 1 : cell.front().where.line}, "grid",
                          "in " + label + ": " + e.what());
       }
-      for (const std::uint64_t seed : sweep.seeds) {
+      for (const std::uint64_t seed : sweep->seeds) {
         SweepRun run;
-        run.index = static_cast<int>(sweep.runs.size());
+        run.index = static_cast<int>(sweep->runs.size());
         run.scenario = scenario;
         run.label = label;
         run.seed = seed;
         run.settings = cell;
         run.id = SweepRunId(label, seed, cell);
-        run.video = run.index < sweep.keep.video;
+        run.video = run.index < sweep->keep.video;
         if (!ids.insert(run.id).second) {
           throw InputError({path, 1}, "scenarios", "two runs of " + label + " have the same id");
         }
-        sweep.runs.push_back(std::move(run));
+        sweep->runs.push_back(std::move(run));
       }
     }
   }
+}
+
+}  // namespace
+
+Sweep ReadSweep(const std::string& path) {
+  const std::string text = ReadTextFile(path);
+  toml::table table;
+  try {
+    table = toml::parse(text, path);
+  } catch (const toml::parse_error& error) {
+    throw InputError({path, static_cast<int>(error.source().begin.line)}, "TOML",
+                     std::string(error.description()));
+  }
+  Sweep sweep;
+  sweep.file = path;
+  sweep.name = fs::path(path).stem().string();
+  const fs::path folder =
+      fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
+  int grid_line = 0;
+  std::vector<int> grid_lines;  // each grid key's line
+  bool seeds_given = false;
+  std::vector<std::string> labels;  // per scenario
+  for (const auto& [key, node] : table) {
+    const std::string name(key.str());
+    const SourceLocation where{path, LineOf(node)};
+    if (name == "name") {
+      const std::optional<std::string> value = node.value<std::string>();
+      if (!value || value->empty() || value->find_first_of("/\\") != std::string::npos) {
+        throw InputError(where, name, "expected a non-empty string without '/' (a folder name)");
+      }
+      sweep.name = *value;
+    } else if (name == "scenarios") {
+      ReadScenarioList(node, path, folder, &sweep, &labels);
+    } else if (name == "seeds") {
+      seeds_given = true;
+      ReadSeeds(node, path, &sweep);
+    } else if (name == "grid") {
+      grid_line = LineOf(node);
+      ReadGrid(node, path, &sweep, &grid_lines);
+    } else if (name == "keep") {
+      const toml::table* keep = node.as_table();
+      if (keep == nullptr) throw InputError(where, name, "expected a table [keep]");
+      toml_read::ReadFields(*keep, path, "keep.", &sweep.keep);
+    } else {
+      const std::string nearest = NearestName(name, {"name", "scenarios", "seeds", "grid", "keep"});
+      throw InputError(where, name,
+                       "unknown key (expected name, scenarios, seeds, [grid] or [keep])" +
+                           (nearest.empty() ? "" : "; did you mean " + nearest + "?"));
+    }
+  }
+  if (sweep.scenarios.empty()) throw InputError({path, 1}, "scenarios", "missing key");
+  if (!seeds_given) sweep.seeds = {1};
+  ExpandRuns(GridCells(sweep, grid_lines, grid_line), labels, &sweep);
   return sweep;
 }
 
