@@ -670,11 +670,7 @@ Scenario ScenarioFromTable(const toml::table& table, const std::string& file) {
     const std::string name(key.str());
     const SourceLocation where{file, LineOf(node)};
     if (name == "name") {
-      const std::optional<std::string> value = node.value<std::string>();
-      if (!value || value->empty() || value->find_first_of("/\\") != std::string::npos) {
-        throw InputError(where, name, "expected a non-empty string without '/' (a folder name)");
-      }
-      scenario.name = *value;
+      scenario.name = FolderName(node, file, name);
     } else if (name == "map") {
       const std::optional<std::string> value = node.value<std::string>();
       if (!value || value->empty()) throw InputError(where, name, "expected a file name");

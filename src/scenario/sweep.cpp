@@ -17,6 +17,7 @@
 
 namespace aerobox {
 namespace fs = std::filesystem;
+using toml_read::FolderName;
 using toml_read::LineOf;
 namespace {
 
@@ -303,11 +304,7 @@ Sweep ReadSweep(const std::string& path) {
     const std::string name(key.str());
     const SourceLocation where{path, LineOf(node)};
     if (name == "name") {
-      const std::optional<std::string> value = node.value<std::string>();
-      if (!value || value->empty() || value->find_first_of("/\\") != std::string::npos) {
-        throw InputError(where, name, "expected a non-empty string without '/' (a folder name)");
-      }
-      sweep.name = *value;
+      sweep.name = FolderName(node, path, name);
     } else if (name == "scenarios") {
       ReadScenarioList(node, path, folder, &sweep, &labels);
     } else if (name == "seeds") {

@@ -66,4 +66,13 @@ std::string Text(const toml::node& node, const std::string& file, const std::str
   return *value;
 }
 
+std::string FolderName(const toml::node& node, const std::string& file, const std::string& key) {
+  const std::optional<std::string> value = node.value<std::string>();
+  if (!value || value->empty() || value->find_first_of("/\\") != std::string::npos) {
+    throw InputError({file, LineOf(node)}, key,
+                     "expected a non-empty string without '/' (a folder name)");
+  }
+  return *value;
+}
+
 }  // namespace aerobox::toml_read

@@ -28,6 +28,8 @@ bool Boolean(const toml::node& node, const std::string& file, const std::string&
 Vec3 Vector(const toml::node& node, const std::string& file, const std::string& key, double low,
             double high);
 std::string Text(const toml::node& node, const std::string& file, const std::string& key);
+// A name that is also a folder's: a non-empty string without '/'.
+std::string FolderName(const toml::node& node, const std::string& file, const std::string& key);
 
 // A table read through a struct's Describe (common/schema.h): each field's key is looked up,
 // read, and checked against the field's range.
