@@ -12,6 +12,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <tuple>
 
 #include "common/error.h"
 #include "geometry/collision_world.h"
@@ -583,11 +584,24 @@ PYBIND11_MODULE(_aerobox, m) {
       py::arg("seed") = py::none());
   m.def(
       "_from_toml",
-      [](const std::string& text, const std::string& label) {
+      [](const std::string& text, const std::string& label,
+         const std::vector<std::tuple<std::string, std::string, std::string>>& settings,
+         const std::string& caller) {
+        // each (key, TOML value, the Python argument that gave it), named in messages as the
+        // argument of `caller`
+        SetupOverrides overrides;
+        for (const auto& [key, value, argument] : settings) {
+          Setting setting;
+          setting.key = key;
+          setting.value = value;
+          setting.where.file = caller;
+          setting.option = argument;
+          overrides.settings.push_back(std::move(setting));
+        }
         return std::make_shared<FlightSetup>(
-            Checked([&] { return LoadFlightSetupFromText(text, label, {}); }));
+            Checked([&] { return LoadFlightSetupFromText(text, label, overrides); }));
       },
-      py::arg("text"), py::arg("label"));
+      py::arg("text"), py::arg("label"), py::arg("settings"), py::arg("caller"));
 
   m.def("_plan", [](const FlightSetup& setup) {
     // the path only: min_snap() is separate

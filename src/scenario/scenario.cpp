@@ -443,23 +443,24 @@ Scenario ScenarioWithSettings(const std::string& text, const std::string& file,
         setting.where, setting.key,
         "in " + file + ": " + (e.field().empty() ? "" : e.field() + ": ") + e.problem());
   };
-  for (const Setting& setting : settings) {
-    toml::table alone = table;
-    ApplySetting(setting, &alone);
-    try {
-      ScenarioFromTable(alone, file);
-    } catch (const InputError& e) {
-      throw blame(setting, e);
-    }
-  }
   toml::table all = table;
   for (const Setting& setting : settings) ApplySetting(setting, &all);
   try {
     return ScenarioFromTable(all, file);
   } catch (const InputError& e) {
-    // settings that fail only together: the one of the key refused, else the first
+    // the setting of the key refused; else the first refused on its own; else (settings that
+    // fail only together) the first
     for (auto s = settings.rbegin(); s != settings.rend(); ++s) {
       if (s->key == e.field()) throw blame(*s, e);
+    }
+    for (const Setting& setting : settings) {
+      toml::table alone = table;
+      ApplySetting(setting, &alone);
+      try {
+        ScenarioFromTable(alone, file);
+      } catch (const InputError& alone_error) {
+        throw blame(setting, alone_error);
+      }
     }
     throw blame(settings.front(), e);
   }

@@ -390,6 +390,13 @@ TEST_CASE("wind brings drag and the drag feed-forward unless the scenario says o
       load("[aero]\ndrag = true\n[controller]\ndrag_feedforward = false\n");
   CHECK(no_feedforward.aero.Enabled());
   CHECK_FALSE(no_feedforward.controller.drag_feedforward);
+  // settings that hold only together (the estimator needs both sensors) are taken together
+  SetupOverrides both;
+  both.settings = {{"sensors.imu", "true", {"command line", 0}, ""},
+                   {"sensors.position", "true", {"command line", 0}, ""}};
+  const FlightSetup sensed =
+      LoadFlightSetupFromText("map = \"m.json\"\n", (dir.path() / "s.toml").string(), both);
+  CHECK(sensed.sensors.Enabled());
   // the command line's --wind and --turbulence: settings of the [wind] keys
   SetupOverrides overrides;
   overrides.settings = {{"wind.mean", "[0, 4, 0]", {"command line", 0}, "--wind"},

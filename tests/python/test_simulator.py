@@ -233,6 +233,22 @@ class WindAndSensors(unittest.TestCase):
         with tempfile.TemporaryDirectory() as folder:
             with self.assertRaisesRegex(ValueError, "wind.turbulence"):
                 aerobox.Simulator(empty_map(folder), wind={"turbulence": "karman"})
+            # a keyword is named as the Python argument it is, with its scenario key, not by a
+            # line of a file the package wrote
+            with self.assertRaises(ValueError) as raised:
+                aerobox.Simulator(empty_map(folder), wind={"intensty": 1.0})
+            self.assertTrue(str(raised.exception).startswith(
+                "aerobox.Simulator: wind['intensty'] (wind.intensty): unknown key"),
+                str(raised.exception))
+            self.assertIn("did you mean intensity?", str(raised.exception))
+            with self.assertRaises(ValueError) as raised:
+                aerobox.plan(empty_map(folder), max_iterations=-3)
+            self.assertTrue(str(raised.exception).startswith(
+                "aerobox.plan: max_iterations (planner.max_iterations): expected a whole number"),
+                str(raised.exception))
+            with self.assertRaises(ValueError) as raised:
+                aerobox.Simulator(empty_map(folder), vehicle="blimp")
+            self.assertIn("aerobox.Simulator: vehicle (vehicle.kind): expected", str(raised.exception))
 
 
 class BadCommands(unittest.TestCase):

@@ -62,6 +62,8 @@ def _toml_value(value):
         return _toml_value(value.tolist())
     if isinstance(value, (list, tuple)):
         return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    if isinstance(value, dict):  # a table, inline
+        return "{" + ", ".join(f"{k} = {_toml_value(v)}" for k, v in value.items()) + "}"
     raise TypeError(f"{type(value).__name__} is not a scenario value")
 
 
@@ -169,8 +171,12 @@ def load_scenario(path):
     return Scenario(path)
 
 
-def _setup(where, start=None, goal=None, seed=None, label="keywords", **tables):
-    """A set-up from a Map, a Scenario or a path, with scenario keys merged over it."""
+def _setup(where, start=None, goal=None, seed=None, caller="aerobox", own=None, extra=(),
+           **tables):
+    """A set-up from a Map, a Scenario or a path, with scenario keys given as Python arguments
+    set over it. Each is checked as `--set` checks a key, and a refused one is named as the
+    caller's argument and the key: `wind['turbulence'] (wind.turbulence)`, with the bare keyword
+    for the table `own` (the caller's own keywords: plan()'s are [planner] keys)."""
     if isinstance(where, (str, os.PathLike)):
         where = os.fspath(where)
         where = Scenario(where) if where.endswith(".toml") else read_map(where)
@@ -180,16 +186,21 @@ def _setup(where, start=None, goal=None, seed=None, label="keywords", **tables):
         document = {"name": where.name, "map": os.path.abspath(where.source)}
     else:
         raise TypeError("expected a map or scenario path, an aerobox.Map or an aerobox.Scenario")
+    settings = list(extra)
     for key, value in (("start", start), ("goal", goal), ("seed", seed)):
         if value is not None:
-            document[key] = value
+            settings.append((key, _toml_value(value), key))
     for table, keys in tables.items():
         if keys is None:
             continue
         if not isinstance(keys, dict):
-            raise TypeError(f"{table}: expected a dict of [{table}] keys")
-        document.setdefault(table, {}).update(keys)
-    return _aerobox._from_toml(_toml(document), label)
+            raise TypeError(f"{caller}: {table}: expected a dict of [{table}] keys")
+        for key, value in keys.items():
+            argument = key if table == own else f"{table}[{key!r}]"
+            settings.append((f"{table}.{key}", _toml_value(value),
+                             f"{argument} ({table}.{key})"))
+    return _aerobox._from_toml(_toml(document), f"{caller} (its map or scenario)", settings,
+                               caller)
 
 
 def plan(map, start=None, goal=None, seed=1, **planner_keys):
@@ -200,7 +211,7 @@ def plan(map, start=None, goal=None, seed=1, **planner_keys):
     max_iterations=2000, clearance=0.1. Raises RuntimeError when there is no path (its status in
     the message) and ValueError for bad input.
     """
-    setup = _setup(map, start, goal, seed, "aerobox.plan keywords", planner=planner_keys)
+    setup = _setup(map, start, goal, seed, "aerobox.plan", "planner", planner=planner_keys)
     result = _aerobox._plan(setup)
     if result["status"] != "solved":
         raise RuntimeError(f"aerobox.plan: {result['status']}")
@@ -216,7 +227,7 @@ def trajectory(map, waypoints, method="minsnap", **trajectory_keys):
     """
     keys = dict(trajectory_keys)
     keys["method"] = method
-    setup = _setup(map, label=f"aerobox.{method} keywords", trajectory=keys)
+    setup = _setup(map, caller=f"aerobox.{method}", own="trajectory", trajectory=keys)
     result = _aerobox._trajectory(setup, waypoints)
     if not result.solved:
         raise RuntimeError(f"aerobox.{method}: {result.status} ({result.message})")
@@ -279,11 +290,10 @@ class Simulator:
         self.ignored_vehicle_keys = []
         self.adjusted_vehicle_keys = []
         if isinstance(vehicle, str):
-            tables.setdefault("vehicle", {})
-            tables["vehicle"] = dict(tables["vehicle"], kind=vehicle)
-            setup = _setup(map, start, goal, seed, "aerobox.Simulator keywords", **tables)
+            setup = _setup(map, start, goal, seed, "aerobox.Simulator",
+                           extra=[("vehicle.kind", _toml_value(vehicle), "vehicle (vehicle.kind)")], **tables)
         elif isinstance(vehicle, dict):
-            setup = _setup(map, start, goal, seed, "aerobox.Simulator keywords", **tables)
+            setup = _setup(map, start, goal, seed, "aerobox.Simulator", **tables)
             setup, self.ignored_vehicle_keys, self.adjusted_vehicle_keys = (
                 setup.with_vehicle(vehicle))
             for note in self.adjusted_vehicle_keys:
