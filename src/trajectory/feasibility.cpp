@@ -109,6 +109,8 @@ FeasibilityCheck CheckFeasibility(const PiecewiseTrajectory& trajectory,
   const int steps = std::clamp(static_cast<int>(std::ceil((t1 - t0) / dt)), 1, kMaxSamples);
   const Mat4 to_rotors = limits.allocation.inverse();
   for (int i = 0; i <= steps; ++i) {
+    // the time searches check whole trajectories, hundreds of times: a point to stop at
+    if (i % 50 == 0) ThrowIfStopRequested("checking the trajectory's feasibility");
     CheckAt(trajectory, limits, to_rotors, t0 + (t1 - t0) * i / steps, &worst);
   }
   return worst.check;
