@@ -25,6 +25,8 @@ packages=(
   nlohmann-json3-dev
   # src/python: the aerobox package (pybind11, Debian's python3 with numpy)
   pybind11-dev python3-dev python3-numpy
+  # `pip install .` (pyproject.toml) into a venv of Debian's python3, tested by tools/test.sh
+  python3-venv python3-pip
   # tests/
   doctest-dev
   # report.html: three.js and Chart.js copied into the page; the page is tested in chromium
