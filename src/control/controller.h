@@ -57,9 +57,20 @@ struct ControlStatus {
   explicit operator bool() const { return ok(); }
 };
 
+// What a controller may know besides the state, given before each Update: the wind at the
+// vehicle [m/s] (world ENU) over the last physics step and the rotors' thrusts [N] now (RotorPy's
+// state['wind'] and state['rotor_speeds']). The built-in controllers do not read it.
+struct Surroundings {
+  Vec3 wind_W = Vec3::Zero();
+  Vec4 rotor_thrusts = Vec4::Zero();
+};
+
 class Controller {
  public:
   virtual ~Controller() = default;
+
+  // Before each Update (see Surroundings).
+  virtual void Sense(const Surroundings& /*now*/) {}
 
   // One control step at flight time t [s]: the state (ENU world, FLU body) and the setpoint in,
   // the command out. Never throws: an input that is not finite, or an error of the controller's

@@ -187,6 +187,7 @@ class FlightRun {
     }
     setpoint_ = setpoints_.At(tr);
     if (t >= nan_from_) setpoint_.p_W.x() = std::numeric_limits<double>::quiet_NaN();
+    loop_.controller->Sense({air_.wind(), sim_->RotorThrusts()});
     ControlStatus control = loop_.controller->Update(t, seen, setpoint_, &command_);
     if (control.ok()) return true;
     result_.message = std::move(control.message);

@@ -124,7 +124,7 @@ class SimulatorCore {
     inner_ = InnerLoops(setup_->controller.inner, setup_->vehicle);
     if (!state.is_none()) {
       sim_.SetVehicleState(StateFromDict(state));
-      sim_.SetRotorThrusts(Vec4::Constant(setup_->vehicle.HoverThrustPerRotor()));
+      sim_.SetRotorThrusts(RotorThrustsFromState(state, setup_->vehicle));
     }
     t0_ = sim_.time();
   }
@@ -132,7 +132,8 @@ class SimulatorCore {
   double Time() const { return sim_.time() - t0_; }
 
   py::dict StateNow() const {
-    return StateDict(sim_.VehicleState(), sim_.RotorThrusts(), setup_->vehicle);
+    // step() flies in still air (the wind acts in run())
+    return StateDict(sim_.VehicleState(), sim_.RotorThrusts(), setup_->vehicle, Vec3::Zero());
   }
 
   py::dict Step(const py::object& command, double dt, const std::string& choice) {
@@ -567,10 +568,21 @@ PYBIND11_MODULE(_aerobox, m) {
            })
       .def("with_vehicle", [](const FlightSetup& s, const py::object& vehicle) {
         auto copy = std::make_shared<FlightSetup>(s);
-        std::vector<std::string> ignored, adjusted;
-        copy->vehicle = VehicleFromDict(vehicle, &ignored, &adjusted);
+        VehicleNotes notes;
+        copy->vehicle = VehicleFromDict(vehicle, SceneOptions{}.timestep, &notes);
         copy->vehicle_kind = "dict";
-        return py::make_tuple(copy, ignored, adjusted);
+        const py::dict dict = vehicle.cast<py::dict>();
+        for (const char* key : {"c_Dx", "c_Dy", "c_Dz", "k_d", "k_z"}) {
+          if (dict.contains(key) && !s.aero.Enabled()) {
+            notes.adjusted.push_back(
+                "c_Dx ... k_z: read, but drag acts only with aero={'drag': True} (RotorPy's "
+                "Multirotor has it on by default)");
+            break;
+          }
+        }
+        py::list ignored;
+        for (const auto& [key, why] : notes.ignored) ignored.append(py::make_tuple(key, why));
+        return py::make_tuple(copy, ignored, notes.adjusted, notes.added);
       });
 
   m.def(

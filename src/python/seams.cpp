@@ -3,8 +3,10 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -132,14 +134,15 @@ py::object PointsArray(const std::vector<Vec3>& points) {
   return std::move(array);
 }
 
-py::dict StateDict(const State& state, const Vec4& rotor_thrusts, const QuadParams& vehicle) {
+py::dict StateDict(const State& state, const Vec4& rotor_thrusts, const QuadParams& vehicle,
+                   const Vec3& wind_W) {
   py::dict dict;
   dict["x"] = Vec3Array(state.p_W);
   dict["v"] = Vec3Array(state.v_W);
   const double q[4] = {state.q_WB.x(), state.q_WB.y(), state.q_WB.z(), state.q_WB.w()};
   dict["q"] = VectorArray(q, 4);
   dict["w"] = Vec3Array(state.w_B);
-  dict["wind"] = Vec3Array(Vec3::Zero());
+  dict["wind"] = Vec3Array(wind_W);
   Vec4 speeds;
   for (int i = 0; i < kNumRotors; ++i) speeds[i] = vehicle.RotorSpeedFor(rotor_thrusts[i]);
   dict["rotor_speeds"] = VectorArray(speeds.data(), 4);
@@ -159,6 +162,18 @@ State StateFromDict(py::handle value) {
     state.q_WB = Quat(q[3], q[0], q[1], q[2]).normalized();
   }
   return state;
+}
+
+Vec4 RotorThrustsFromState(py::handle value, const QuadParams& vehicle) {
+  const py::dict dict = AsDict(value, "state");
+  if (!dict.contains("rotor_speeds")) return Vec4::Constant(vehicle.HoverThrustPerRotor());
+  const Vec4 speeds = Require<4>(dict, "rotor_speeds", "state");
+  Vec4 thrusts;
+  for (int i = 0; i < kNumRotors; ++i) {
+    thrusts[i] = std::clamp(vehicle.ThrustAtSpeed(speeds[i]), vehicle.min_rotor_thrust,
+                            vehicle.max_rotor_thrust);
+  }
+  return thrusts;
 }
 
 py::dict FlatDict(const FlatOutput& flat) {
@@ -238,8 +253,13 @@ ControlCommand CommandFromDict(py::handle value, CommandChoice choice, const Qua
     case CommandChoice::kMotorSpeeds: {
       command.level = CommandLevel::kRotorThrusts;
       const Vec4 speeds = Require<4>(dict, "cmd_motor_speeds", where);
-      for (int i = 0; i < kNumRotors; ++i)
-        command.rotor_thrusts[i] = vehicle.ThrustAtSpeed(speeds[i]);
+      // clipped to the rotors' range first, as RotorPy and flightsim do (a negative speed is
+      // the slowest, not a thrust of its square)
+      const double slowest = vehicle.RotorSpeedFor(vehicle.min_rotor_thrust);
+      const double fastest = vehicle.RotorSpeedFor(vehicle.max_rotor_thrust);
+      for (int i = 0; i < kNumRotors; ++i) {
+        command.rotor_thrusts[i] = vehicle.ThrustAtSpeed(std::clamp(speeds[i], slowest, fastest));
+      }
       break;
     }
     case CommandChoice::kThrustMoment:
@@ -269,69 +289,141 @@ ControlCommand CommandFromDict(py::handle value, CommandChoice choice, const Qua
   return command;
 }
 
-QuadParams VehicleFromDict(py::handle value, std::vector<std::string>* ignored,
-                           std::vector<std::string>* adjusted) {
-  const py::dict dict = AsDict(value, "vehicle");
-  const std::string who = "vehicle";
-  std::set<std::string> used;
-  const auto has = [&](const char* key) { return dict.contains(key); };
-  const auto number = [&](const char* key) {
-    used.insert(key);
-    return Number(dict[key], "vehicle['" + std::string(key) + "']");
-  };
-  QuadParams v;
-  if (!has("mass")) throw py::value_error("vehicle: no key 'mass' [kg]");
-  v.mass = number("mass");
-  for (const char* key : {"Ixx", "Iyy", "Izz"}) {
-    if (!has(key)) throw py::value_error(std::string("vehicle: no key '") + key + "' [kg m^2]");
+namespace {
+
+// A vehicle dict read key by key: which keys were used, and what was added or adjusted.
+class DictReader {
+ public:
+  DictReader(py::handle value, VehicleNotes* notes)
+      : dict_(AsDict(value, "vehicle")), notes_(notes) {}
+  bool has(const char* key) const { return dict_.contains(key); }
+  py::handle operator[](const char* key) {
+    used_.insert(key);
+    return dict_[key];
   }
-  v.inertia = Vec3(number("Ixx"), number("Iyy"), number("Izz"));
+  double number(const char* key) {
+    return Number((*this)[key], "vehicle['" + std::string(key) + "']");
+  }
+  double required(const char* key, const char* unit) {
+    if (!has(key))
+      throw py::value_error(std::string("vehicle: no key '") + key + "' [" + unit + "]");
+    return number(key);
+  }
+  // `key` was absent and aerobox took `value` (with its unit) because `why`
+  void Added(const char* key, const std::string& value, const std::string& why) {
+    notes_->added.push_back(std::string(key) + " " + value + " (" + why + ")");
+  }
+  void Adjusted(std::string what) { notes_->adjusted.push_back(std::move(what)); }
+  // the keys not used, each with why aerobox has no counterpart
+  void ListIgnored() {
+    static const std::map<std::string, std::string> kWhy = {
+        {"Ixy", "off-diagonal inertia: the body's axes are its principal axes"},
+        {"Ixz", "off-diagonal inertia: the body's axes are its principal axes"},
+        {"Iyz", "off-diagonal inertia: the body's axes are its principal axes"},
+        {"k_h", "translational lift: not modelled"},
+        {"k_flap", "blade flapping: not modelled"},
+        {"motor_noise_std", "motor noise: not modelled (the rotors produce what is commanded)"},
+    };
+    for (const auto item : dict_) {
+      const std::string key = py::str(item.first);
+      if (used_.count(key) != 0) continue;
+      const auto why = kWhy.find(key);
+      // a zero of a term aerobox does not model loses nothing
+      if (why != kWhy.end() && IsZero(item.second)) continue;
+      notes_->ignored.emplace_back(
+          key, why != kWhy.end() ? why->second : "not a vehicle key aerobox reads");
+    }
+  }
+
+ private:
+  static bool IsZero(py::handle value) {
+    double x = 0.0;
+    std::string problem;
+    return ReadNumbers(value, 1, &x, &problem) && x == 0.0;
+  }
+  py::dict dict_;
+  VehicleNotes* notes_;
+  std::set<std::string> used_;
+};
+
+void ReadInertia(DictReader& d, QuadParams* v) {
+  v->mass = d.required("mass", "kg");
+  v->inertia =
+      Vec3(d.required("Ixx", "kg m^2"), d.required("Iyy", "kg m^2"), d.required("Izz", "kg m^2"));
   // MuJoCo refuses principal moments that break the triangle inequality; a flat vehicle's
   // published values can, by rounding (RotorPy's Crazyflie: Izz 2.89e-5 > 2 x 1.43e-5)
   for (int i = 0; i < 3; ++i) {
-    const double others = v.inertia[(i + 1) % 3] + v.inertia[(i + 2) % 3];
-    if (v.inertia[i] > others && v.inertia[i] <= 1.05 * others) {
+    const double others = v->inertia[(i + 1) % 3] + v->inertia[(i + 2) % 3];
+    if (v->inertia[i] > others && v->inertia[i] <= 1.05 * others) {
       static const char* const kAxis[] = {"Ixx", "Iyy", "Izz"};
-      adjusted->push_back(std::string(kAxis[i]) + " " + FormatNumber(v.inertia[i]) + " -> " +
-                          FormatNumber(others) +
-                          " kg m^2 (MuJoCo needs each moment at most the sum of the others)");
-      v.inertia[i] = others;
+      d.Adjusted(std::string(kAxis[i]) + " " + FormatNumber(v->inertia[i]) + " -> " +
+                 FormatNumber(others) +
+                 " kg m^2 (MuJoCo needs each moment at most the sum of the others)");
+      v->inertia[i] = others;
     }
   }
-  if (has("num_rotors") && number("num_rotors") != kNumRotors) {
+}
+
+// Thrust and yaw coefficients (RotorPy's k_eta, k_m, or flightsim's k_thrust, k_drag) and the
+// rotor speed range.
+void ReadRotors(DictReader& d, QuadParams* v) {
+  if (d.has("num_rotors") && d.number("num_rotors") != kNumRotors) {
     throw py::value_error("vehicle['num_rotors']: aerobox flies quadrotors (4 rotors)");
   }
-  // thrust and yaw moment coefficients: RotorPy's k_eta, k_m, or flightsim's k_thrust, k_drag
-  const char* k_thrust = has("k_eta") ? "k_eta" : "k_thrust";
-  const char* k_moment = has("k_m") ? "k_m" : "k_drag";
-  if (!has(k_thrust)) throw py::value_error("vehicle: no key 'k_eta' [N/(rad/s)^2]");
-  if (!has(k_moment)) throw py::value_error("vehicle: no key 'k_m' [N m/(rad/s)^2]");
-  v.thrust_coefficient = number(k_thrust);
-  if (!(v.thrust_coefficient > 0)) {
+  const char* k_thrust = d.has("k_eta") ? "k_eta" : "k_thrust";
+  const char* k_moment = d.has("k_m") ? "k_m" : "k_drag";
+  if (!d.has(k_thrust)) throw py::value_error("vehicle: no key 'k_eta' [N/(rad/s)^2]");
+  if (!d.has(k_moment)) throw py::value_error("vehicle: no key 'k_m' [N m/(rad/s)^2]");
+  v->thrust_coefficient = d.number(k_thrust);
+  if (!(v->thrust_coefficient > 0)) {
     throw py::value_error(std::string("vehicle['") + k_thrust + "'] must be positive");
   }
-  v.yaw_moment_per_thrust = number(k_moment) / v.thrust_coefficient;
-  if (!has("rotor_speed_max")) throw py::value_error("vehicle: no key 'rotor_speed_max' [rad/s]");
-  v.max_rotor_thrust = v.ThrustAtSpeed(number("rotor_speed_max"));
-  v.min_rotor_thrust = has("rotor_speed_min") ? v.ThrustAtSpeed(number("rotor_speed_min")) : 0.0;
-  if (has("tau_m")) {
-    used.insert("tau_m");
-    // RotorPy gives one time constant per rotor; MuJoCo's filter here has one for all
-    Array taus = Array::ensure(dict["tau_m"]);
-    if (!taus || taus.size() < 1) {
-      PyErr_Clear();
-      throw py::value_error("vehicle['tau_m']: expected a time constant [s] or one per rotor");
-    }
-    double sum = 0.0;
-    for (py::ssize_t i = 0; i < taus.size(); ++i) sum += taus.data()[i];
-    v.motor_time_constant = sum / static_cast<double>(taus.size());
+  v->yaw_moment_per_thrust = d.number(k_moment) / v->thrust_coefficient;
+  v->max_rotor_thrust = v->ThrustAtSpeed(d.required("rotor_speed_max", "rad/s"));
+  if (d.has("rotor_speed_min")) {
+    v->min_rotor_thrust = v->ThrustAtSpeed(d.number("rotor_speed_min"));
+  } else {
+    v->min_rotor_thrust = 0.0;
+    d.Added("rotor_speed_min", "0 rad/s", "the rotors may stop");
   }
-  if (has("rotor_pos")) {
-    used.insert("rotor_pos");
-    const py::handle rotor_pos = dict["rotor_pos"];
-    // in the dict's order (RotorPy's Multirotor iterates it so too), never reordered: rotor
-    // i of the commands is the i-th entry the user gave
-    std::vector<Vec3> positions;
+}
+
+// The motor lag: RotorPy's tau_m (one per rotor; MuJoCo's filter here has one for all: their
+// mean). flightsim's vehicle has none: its rotors follow the command after one physics step.
+void ReadMotorLag(DictReader& d, bool flightsim, double step, QuadParams* v) {
+  if (!d.has("tau_m")) {
+    if (flightsim) {
+      v->motor_time_constant = step;
+      d.Added("tau_m", FormatNumber(step) + " s",
+              "flightsim's vehicle has no motor lag: the thrust follows the command after one "
+              "physics step");
+    } else {
+      d.Added("tau_m", FormatNumber(v->motor_time_constant) + " s",
+              "aerobox's default motor lag: the dict gives none");
+    }
+    return;
+  }
+  Array taus = Array::ensure(d["tau_m"]);
+  if (!taus || taus.size() < 1) {
+    PyErr_Clear();
+    throw py::value_error("vehicle['tau_m']: expected a time constant [s] or one per rotor");
+  }
+  double sum = 0.0;
+  for (py::ssize_t i = 0; i < taus.size(); ++i) sum += taus.data()[i];
+  v->motor_time_constant = std::max(sum / static_cast<double>(taus.size()), step);
+  if (v->motor_time_constant != sum / static_cast<double>(taus.size())) {
+    d.Adjusted("tau_m " + FormatNumber(sum / static_cast<double>(taus.size())) + " -> " +
+               FormatNumber(step) + " s (the physics step: no lag is shorter)");
+  }
+}
+
+// Where the rotors are, in the dict's order (RotorPy's Multirotor iterates rotor_pos so too),
+// never reordered: rotor i of the commands is the i-th entry the user gave. flightsim's
+// arm_length: a "+" with rotors on +x, +y, -x, -y.
+void ReadLayout(DictReader& d, QuadParams* v) {
+  std::vector<Vec3> positions;
+  if (d.has("rotor_pos")) {
+    const py::handle rotor_pos = d["rotor_pos"];
     if (py::isinstance<py::dict>(rotor_pos)) {
       for (const auto item : py::reinterpret_borrow<py::dict>(rotor_pos)) {
         positions.push_back(PointFrom(
@@ -340,41 +432,86 @@ QuadParams VehicleFromDict(py::handle value, std::vector<std::string>* ignored,
     } else {
       positions = PointsFromArray(rotor_pos, "vehicle['rotor_pos']");
     }
-    if (positions.size() != kNumRotors) {
-      throw py::value_error("vehicle['rotor_pos']: expected 4 rotors, got " +
-                            std::to_string(positions.size()));
-    }
-    for (int i = 0; i < kNumRotors; ++i) v.rotor_positions_B[i] = positions[i];
-  } else if (has("arm_length")) {
-    // flightsim's layout: "+" with rotors on +x, +y, -x, -y
-    const double l = number("arm_length");
-    v.rotor_positions_B = {Vec3(l, 0, 0), Vec3(0, l, 0), Vec3(-l, 0, 0), Vec3(0, -l, 0)};
+  } else if (d.has("arm_length")) {
+    const double l = d.number("arm_length");
+    positions = {Vec3(l, 0, 0), Vec3(0, l, 0), Vec3(-l, 0, 0), Vec3(0, -l, 0)};
   } else {
     throw py::value_error("vehicle: no key 'rotor_pos' (or 'arm_length') [m]");
   }
-  if (has("rotor_directions")) {
-    used.insert("rotor_directions");
-    Vec4 directions = Require<4>(dict, "rotor_directions", who);
+  if (positions.size() != kNumRotors) {
+    throw py::value_error("vehicle['rotor_pos']: expected 4 rotors, got " +
+                          std::to_string(positions.size()));
+  }
+  for (int i = 0; i < kNumRotors; ++i) v->rotor_positions_B[i] = positions[i];
+  if (d.has("rotor_directions")) {
+    Vec4 directions;
+    std::string problem;
+    if (!ReadNumbers(d["rotor_directions"], 4, directions.data(), &problem)) {
+      throw py::value_error("vehicle: 'rotor_directions' " + problem);
+    }
     for (int i = 0; i < kNumRotors; ++i) {
       if (std::abs(std::abs(directions[i]) - 1.0) > 1e-9) {
         throw py::value_error("vehicle['rotor_directions']: expected +1 or -1 per rotor");
       }
-      v.rotor_directions[i] = directions[i] > 0 ? 1 : -1;
+      v->rotor_directions[i] = directions[i] > 0 ? 1 : -1;
     }
+  } else {
+    v->rotor_directions = {+1, -1, +1, -1};
+    d.Added("rotor_directions", "[+1, -1, +1, -1]",
+            "flightsim's yaw signs: rotors 1 and 3 give a positive yaw reaction");
   }
   // the collision box covers the rotor discs; its height is the Crazyflie's (29 mm)
   double reach = 0.0;
-  for (const Vec3& r : v.rotor_positions_B) {
+  for (const Vec3& r : v->rotor_positions_B) {
     reach = std::max({reach, std::abs(r.x()), std::abs(r.y())});
   }
-  const double radius = has("rotor_radius") ? number("rotor_radius") : 0.3 * reach;
-  v.propeller_radius = radius;
-  v.guard_radius = 1.05 * radius;
-  v.collision_size = Vec3(2 * (reach + radius), 2 * (reach + radius), 0.03);
-  for (const auto item : dict) {
-    const std::string key = py::str(item.first);
-    if (used.count(key) == 0) ignored->push_back(key);
+  double radius = 0.3 * reach;
+  if (d.has("rotor_radius")) {
+    radius = d.number("rotor_radius");
+  } else {
+    d.Added("rotor_radius", FormatNumber(radius) + " m", "0.3 of the arm, for the collision box");
   }
+  v->propeller_radius = radius;
+  v->guard_radius = 1.05 * radius;
+  v->collision_size = Vec3(2 * (reach + radius), 2 * (reach + radius), 0.03);
+}
+
+// RotorPy's drag: its parasitic drag -|v| diag(c_Dx, c_Dy, c_Dz) v is aerobox's body drag, term
+// for term. Its rotor drag grows with the rotor's speed (-w_i diag(k_d, k_d, k_z) v_i),
+// aerobox's with its thrust (-T_i diag(k) v_i): they are set equal at hover.
+void ReadDrag(DictReader& d, QuadParams* v) {
+  const char* body[] = {"c_Dx", "c_Dy", "c_Dz"};
+  for (int i = 0; i < 3; ++i) {
+    if (d.has(body[i])) v->body_drag[i] = d.number(body[i]);
+  }
+  if (!d.has("k_d") && !d.has("k_z")) return;
+  const double hover_speed = v->RotorSpeedFor(v->HoverThrustPerRotor());
+  const double k_d = d.has("k_d") ? d.number("k_d") : 0.0;
+  const double k_z = d.has("k_z") ? d.number("k_z") : 0.0;
+  const double per_newton = 1.0 / (v->thrust_coefficient * hover_speed);
+  v->rotor_drag = Vec3(k_d, k_d, k_z) * per_newton;
+  char text[200];
+  std::snprintf(text, sizeof(text),
+                "k_d, k_z -> rotor drag %.3g, %.3g s/m per newton of thrust (RotorPy's rotor "
+                "drag grows with the rotor's speed, aerobox's with its thrust: equal at hover, "
+                "%.0f rad/s)",
+                v->rotor_drag.x(), v->rotor_drag.z(), hover_speed);
+  d.Adjusted(text);
+}
+
+}  // namespace
+
+QuadParams VehicleFromDict(py::handle value, double physics_step, VehicleNotes* notes) {
+  DictReader d(value, notes);
+  // flightsim's dict: its "+" layout from arm_length, its k_thrust and k_drag, no motor lag
+  const bool flightsim = !d.has("rotor_pos") && d.has("arm_length");
+  QuadParams v;
+  ReadInertia(d, &v);
+  ReadRotors(d, &v);
+  ReadMotorLag(d, flightsim, physics_step, &v);
+  ReadLayout(d, &v);
+  ReadDrag(d, &v);
+  d.ListIgnored();
   try {
     v.Validate();
   } catch (const std::invalid_argument& e) {
@@ -476,7 +613,7 @@ ControlStatus PythonController::Update(double t, const State& state, const FlatO
   const std::string who = "controller.update";
   try {
     const py::object answer =
-        update_(t, StateDict(state, last_thrusts_, vehicle_), FlatDict(setpoint));
+        update_(t, StateDict(state, now_.rotor_thrusts, vehicle_, now_.wind_W), FlatDict(setpoint));
     *command = CommandFromDict(answer, choice_, vehicle_, t, who);
   } catch (py::error_already_set& e) {
     ControlStatus failed =
@@ -492,7 +629,6 @@ ControlStatus PythonController::Update(double t, const State& state, const FlatO
     error_ = std::current_exception();
     return ControlStatus::Failed(e.what());
   }
-  if (command->level == CommandLevel::kRotorThrusts) last_thrusts_ = command->rotor_thrusts;
   return ControlStatus::Ok();
 }
 

@@ -22,11 +22,15 @@ namespace aerobox::python {
 
 namespace py = pybind11;
 
-// RotorPy's state dict: x [m], v [m/s], q [i, j, k, w], w [rad/s, body], wind [m/s] (still air
-// for now) and rotor_speeds [rad/s] (from the produced thrusts through k_eta).
-py::dict StateDict(const State& state, const Vec4& rotor_thrusts, const QuadParams& vehicle);
+// RotorPy's state dict: x [m], v [m/s], q [i, j, k, w], w [rad/s, body], wind [m/s] at the
+// vehicle and rotor_speeds [rad/s] (from the produced thrusts through k_eta).
+py::dict StateDict(const State& state, const Vec4& rotor_thrusts, const QuadParams& vehicle,
+                   const Vec3& wind_W);
 // The inverse for x, v, q and w (sim.reset(state=...)); throws py::value_error naming the key.
 State StateFromDict(py::handle dict);
+// The rotors' thrusts [N] of a state dict: from its rotor_speeds [rad/s] (RotorPy's state) when
+// it has them, else those that hover. Throws py::value_error naming the key.
+Vec4 RotorThrustsFromState(py::handle dict, const QuadParams& vehicle);
 
 // RotorPy's flat-output dict: x, x_dot, x_ddot, x_dddot, x_ddddot [m, m/s, ...], yaw [rad],
 // yaw_dot [rad/s].
@@ -53,12 +57,17 @@ CommandChoice ParseCommandChoice(const std::string& name);
 ControlCommand CommandFromDict(py::handle dict, CommandChoice choice, const QuadParams& vehicle,
                                double t, const std::string& who);
 
-// A vehicle from RotorPy's quad_params dict (or flightsim's: arm_length, k_thrust, k_drag).
-// `ignored` gets the keys MuJoCo does not model here (drag, noise, off-diagonal inertia ...);
-// `adjusted` says what was changed to be simulated (principal moments within 5 % of breaking
-// the triangle inequality are set on it). Throws py::value_error naming the key.
-QuadParams VehicleFromDict(py::handle dict, std::vector<std::string>* ignored,
-                           std::vector<std::string>* adjusted);
+// What aerobox made of a vehicle dict beyond reading it, for the user to see.
+struct VehicleNotes {
+  // keys with no counterpart, each with why (a zero of a term not modelled is not listed)
+  std::vector<std::pair<std::string, std::string>> ignored;
+  std::vector<std::string> adjusted;  // a value changed to be simulated, from -> to and why
+  std::vector<std::string> added;     // a key absent, the value aerobox took and why
+};
+// A vehicle from RotorPy's quad_params dict (or flightsim's: arm_length, k_thrust, k_drag, and
+// no motor lag: its rotors follow the command after one `physics_step` [s]). Throws
+// py::value_error naming the key.
+QuadParams VehicleFromDict(py::handle dict, double physics_step, VehicleNotes* notes);
 // A vehicle as RotorPy's quad_params dict: rotor_pos as r1..r4 by the index of
 // QuadParams::rotor_positions_B (RotorPy's order for the built-ins; a dict's own order for a
 // vehicle read with VehicleFromDict, which keeps it as given).
@@ -84,6 +93,7 @@ std::string FormatTraceback(const py::error_already_set& error);
 class PythonController : public Controller {
  public:
   PythonController(py::object controller, const QuadParams& vehicle, CommandChoice choice);
+  void Sense(const Surroundings& now) override { now_ = now; }
   ControlStatus Update(double t, const State& state, const FlatOutput& setpoint,
                        ControlCommand* command) override;
   // Throws what made an Update fail (the user's exception, or py::value_error); else nothing.
@@ -93,7 +103,7 @@ class PythonController : public Controller {
   py::object update_;
   QuadParams vehicle_;
   CommandChoice choice_;
-  Vec4 last_thrusts_ = Vec4::Zero();
+  Surroundings now_;
   std::exception_ptr error_;
 };
 

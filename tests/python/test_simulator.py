@@ -229,6 +229,34 @@ class WindAndSensors(unittest.TestCase):
             for column in ("wind_x", "drag_x", "est_x", "est_nees", "imu_gx", "meas_x"):
                 self.assertIn(column, header)
 
+    def test_the_controller_sees_the_wind_and_the_rotors(self):
+        # RotorPy's state['wind'] is the wind at the vehicle [m/s] (it was always zero), and
+        # state['rotor_speeds'] the rotors' speeds [rad/s], also under an attitude command
+        class Seeing(SE3Control):
+            def __init__(self, quad_params):
+                super().__init__(quad_params)
+                self.seen = []
+
+            def update(self, t, state, flat_output):
+                self.seen.append((np.array(state["wind"]), np.array(state["rotor_speeds"])))
+                return super().update(t, state, flat_output)
+
+        with tempfile.TemporaryDirectory() as folder:
+            sim = aerobox.Simulator(empty_map(folder), start=[1.0, 0.0, 1.5],
+                                    wind={"mean": [2.0, 0.0, 0.0]})
+        controller = Seeing(sim.quad_params)
+        result = sim.run(controller, Circle(r=0.0, laps=1), control_rate=500)
+        self.assertEqual(result["status"], "reached goal")
+        wind = np.array([w for w, _ in controller.seen])
+        speeds = np.array([s for _, s in controller.seen])
+        np.testing.assert_allclose(wind[1:], np.tile([2.0, 0.0, 0.0], (len(wind) - 1, 1)))
+        # the rotors' speeds: what the produced thrusts need through k_eta, near hover
+        k_eta = sim.quad_params["k_eta"]
+        produced = np.sqrt(result["rotor_thrusts"] / k_eta)
+        np.testing.assert_allclose(speeds[1:], produced[:-1], rtol=0.05)
+        hover = math.sqrt(sim.quad_params["mass"] * 9.81 / 4 / k_eta)
+        self.assertLess(abs(np.median(speeds) - hover) / hover, 0.1)
+
     def test_bad_wind_keys_name_the_key(self):
         with tempfile.TemporaryDirectory() as folder:
             with self.assertRaisesRegex(ValueError, "wind.turbulence"):
@@ -333,10 +361,16 @@ class RotorPyVehicle(unittest.TestCase):
     def test_hovers_and_tracks_a_circle(self):
         with tempfile.TemporaryDirectory() as folder:
             sim = aerobox.Simulator(empty_map(folder), vehicle=self.QUAD_PARAMS, start=[1, 0, 1.5])
-            for key in ("Ixy", "c_Dx", "k_d", "motor_noise_std"):
-                self.assertIn(key, sim.ignored_vehicle_keys)
-            for key in ("mass", "rotor_pos", "k_eta", "tau_m"):
-                self.assertNotIn(key, sim.ignored_vehicle_keys)
+            # what has no counterpart, with why; a zero off-diagonal inertia loses nothing
+            self.assertEqual(sim.ignored_vehicle_keys, ["k_h", "motor_noise_std"])
+            self.assertIn("ignored k_h: translational lift: not modelled", sim.vehicle_notes)
+            # the drag terms are read: body drag term for term, rotor drag at hover
+            self.assertEqual(sim.added_vehicle_keys, [])
+            self.assertEqual(len(sim.adjusted_vehicle_keys), 3, sim.adjusted_vehicle_keys)
+            self.assertRegex(sim.adjusted_vehicle_keys[1],
+                             r"^k_d, k_z -> rotor drag 0.0249, 0.0184 s/m per newton of thrust "
+                             r"\(.* equal at hover, 1789 rad/s\)$")
+            self.assertIn("only with aero={'drag': True}", sim.adjusted_vehicle_keys[2])
             self.assertAlmostEqual(sim.quad_params["mass"], 0.03)
             controller = SE3Control(sim.quad_params)
             hover = sim.run(controller, Circle(r=0.0, laps=1))

@@ -261,13 +261,19 @@ class Simulator:
         (4, 3) array, rotors in the order given) [m, body frame], rotor_directions (+1:
         positive yaw reaction, as RotorPy's: a rotor spinning clockwise seen from above), k_eta
         [N/(rad/s)^2], k_m [N m/(rad/s)^2], rotor_speed_min, rotor_speed_max [rad/s] (thrust
-        limits k_eta w^2), tau_m [s] (one motor lag for all rotors: their mean) and rotor_radius
-        [m] (the collision box covers the rotor discs, 3 cm high); flightsim's arm_length,
-        k_thrust, k_drag give a "+" layout. Ignored, listed in `ignored_vehicle_keys`:
-        off-diagonal inertia (Ixy, Ixz, Iyz), drag (c_Dx, c_Dy, c_Dz, k_d, k_z, k_h, k_flap),
-        motor_noise_std and anything else. Principal moments that MuJoCo would refuse by a
-        rounding (Izz slightly above Ixx + Iyy, as RotorPy's Crazyflie has) are set to the sum,
-        with a warning, listed in `adjusted_vehicle_keys`.
+        limits k_eta w^2), tau_m [s] (one motor lag for all rotors: their mean), rotor_radius
+        [m] (the collision box covers the rotor discs, 3 cm high), c_Dx, c_Dy, c_Dz (RotorPy's
+        parasitic drag, aerobox's body drag term for term) and k_d, k_z (rotor drag, set equal
+        at hover: RotorPy's grows with rotor speed, aerobox's with thrust); drag acts with
+        aero={"drag": True}. flightsim's dict (arm_length, k_thrust, k_drag) is flightsim's
+        vehicle: a "+" layout, its yaw signs, and no motor lag unless tau_m is given (the thrust
+        follows the command after one 1 ms physics step).
+        What aerobox adds (a key absent: a default motor lag, rotor_directions, rotor_radius),
+        adjusts (principal moments MuJoCo would refuse by a rounding, as RotorPy's Crazyflie's
+        Izz, are set to the sum; the rotor drag's mapping) or ignores (off-diagonal inertia,
+        k_h, k_flap, motor_noise_std when not zero, unknown keys) is listed in
+        `added_vehicle_keys`, `adjusted_vehicle_keys`, `ignored_vehicle_keys`, all of it with
+        the reasons in `vehicle_notes` (also in run()'s result), and printed once as a warning.
     start: [m]; the vehicle rests there (on the floor when the start is at floor level,
         hovering otherwise). Default: the map's or scenario's start.
     scenario_keys: goal, and tables: controller={...}, flight={...} (settle_time,
@@ -289,15 +295,22 @@ class Simulator:
         goal = tables.pop("goal", None)
         self.ignored_vehicle_keys = []
         self.adjusted_vehicle_keys = []
+        self.added_vehicle_keys = []
+        self.vehicle_notes = []
         if isinstance(vehicle, str):
             setup = _setup(map, start, goal, seed, "aerobox.Simulator",
                            extra=[("vehicle.kind", _toml_value(vehicle), "vehicle (vehicle.kind)")], **tables)
         elif isinstance(vehicle, dict):
             setup = _setup(map, start, goal, seed, "aerobox.Simulator", **tables)
-            setup, self.ignored_vehicle_keys, self.adjusted_vehicle_keys = (
+            setup, ignored, self.adjusted_vehicle_keys, self.added_vehicle_keys = (
                 setup.with_vehicle(vehicle))
-            for note in self.adjusted_vehicle_keys:
-                warnings.warn(f"aerobox.Simulator: vehicle {note}", stacklevel=2)
+            self.ignored_vehicle_keys = [key for key, _ in ignored]
+            self.vehicle_notes = ([f"added {note}" for note in self.added_vehicle_keys]
+                                  + [f"adjusted {note}" for note in self.adjusted_vehicle_keys]
+                                  + [f"ignored {key}: {why}" for key, why in ignored])
+            if self.vehicle_notes:
+                warnings.warn("aerobox.Simulator: the vehicle dict, as aerobox flies it:\n  "
+                              + "\n  ".join(self.vehicle_notes), stacklevel=2)
         else:
             raise TypeError("vehicle: expected 'tello', 'crazyflie' or a quad_params dict")
         self._core = _aerobox.SimulatorCore(setup)
@@ -326,7 +339,7 @@ class Simulator:
 
     def reset(self, seed=None, state=None):
         """Back to the start at t = 0 (or to `state`, RotorPy's dict: x [m], v [m/s],
-        q [i, j, k, w], w [rad/s]); `seed` seeds the turbulence and the sensors' noise (the same
+        q [i, j, k, w], w [rad/s], and rotor_speeds [rad/s], else the rotors at hover); `seed` seeds the turbulence and the sensors' noise (the same
         seed gives the same flight). Returns the state."""
         if seed is not None:
             self._seed = seed
@@ -391,6 +404,7 @@ class Simulator:
             control_rate = self._core.setup.control_rate
         result, record = self._core.run(controller, trajectory, float(t_final),
                                         float(control_rate), command, reset)
+        result["vehicle_notes"] = list(self.vehicle_notes)
         result["_record"] = record
         return result
 
