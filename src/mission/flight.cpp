@@ -48,6 +48,8 @@ const char* ToString(FlightStatus status) {
       return "simulation warning";
     case FlightStatus::kMissedGoal:
       return "missed a goal";
+    case FlightStatus::kTerminated:
+      return "terminated";
     case FlightStatus::kControllerFailed:
       return "controller failed";
   }
@@ -75,13 +77,29 @@ void PlaceVehicleAtStart(const Map& map, const QuadParams& vehicle, const Vec3& 
 namespace {
 
 // Why the flight ends after this control and inner-loop step, if it does: lost, arrived, late.
+// Whether the vehicle rests where the flight ends (Completion), at the reference's time tr [s].
+bool Complete(const FlightParams& params, const Completion& completion, double tr, double duration,
+              const State& state, const Vec3& end) {
+  switch (completion.kind) {
+    case Completion::Kind::kNever:
+      return false;
+    case Completion::Kind::kAtEnd:
+      if (tr < duration) return false;
+      break;
+    case Completion::Kind::kAtPoint:
+      return tr >= completion.from &&
+             (state.p_W - completion.point).norm() < completion.point_tolerance &&
+             state.v_W.norm() <= completion.point_speed;
+  }
+  return (state.p_W - end).norm() < params.goal_tolerance && state.v_W.norm() < params.goal_speed;
+}
+
 std::optional<FlightStatus> Verdict(const FlightParams& params, const FlightLoop& loop,
                                     const Takeoff& takeoff, double t, double tr, double duration,
                                     double error, const State& state, const Vec3& goal,
                                     size_t goals_reached) {
   if (error > params.flyaway_distance) return FlightStatus::kFlyAway;
-  if (!takeoff.lifting() && tr >= duration && (state.p_W - goal).norm() < params.goal_tolerance &&
-      state.v_W.norm() < params.goal_speed) {
+  if (!takeoff.lifting() && Complete(params, loop.completion, tr, duration, state, goal)) {
     return goals_reached == loop.goals.size() ? FlightStatus::kReachedGoal
                                               : FlightStatus::kMissedGoal;
   }
@@ -154,6 +172,9 @@ class FlightRun {
     ReachGoals(t, state);
     const double error = (state.p_W - setpoint_.p_W).norm();
     if (control_step) Record(t, state, seen, error);
+    if (control_step && loop_.terminate && loop_.terminate(t, state)) {
+      return End(FlightStatus::kTerminated);
+    }
     if (const std::optional<FlightStatus> verdict =
             Verdict(params_, loop_, takeoff_, t, tr, setpoints_.duration(), error, state, goal_,
                     result_.goal_times.size())) {

@@ -43,6 +43,7 @@ enum class FlightStatus {
   kSimulationWarning,  // MuJoCo warned (an engine reset, a full contact buffer): not trusted
   kMissedGoal,         // at the last goal, but a goal before it was never reached
   kControllerFailed,   // the controller gave no command (ControlStatus::kFailed): its message
+  kTerminated,         // the loop's own rule ended it (FlightLoop::terminate)
 };
 const char* ToString(FlightStatus status);
 
@@ -112,6 +113,24 @@ Reference ReferenceOf(const PiecewiseTrajectory& trajectory);
 void PlaceVehicleAtStart(const Map& map, const QuadParams& vehicle, const Vec3& requested,
                          const Vec3& used, Simulation* sim);
 
+// When a flight is complete (FlightStatus::kReachedGoal): the vehicle rests at a point within
+// a tolerance, below a speed (the goal's, FlightParams, at the reference's end).
+struct Completion {
+  enum class Kind {
+    kAtEnd,    // at the reference's end, once the reference's time has run out
+    kAtPoint,  // at `point`, from the reference's time `from` [s] on, whatever its duration (a
+               // trajectory known only by its end: flightsim's and RotorPy's rule)
+    kNever,    // never: the flight ends at its time limit or on a failure
+  };
+  Kind kind = Kind::kAtEnd;
+  Vec3 point = Vec3::Zero();  // [m]
+  double from = 0.0;          // [s]
+  // kAtPoint's own tolerances (with no end time, the goal's would end an approach early):
+  // flightsim's and RotorPy's, 2 cm and 3 cm/s
+  double point_tolerance = 0.02;  // [m]
+  double point_speed = 0.03;      // [m/s]
+};
+
 // The parts of a flight besides the simulation and the reference.
 struct FlightLoop {
   const QuadParams* vehicle = nullptr;
@@ -141,6 +160,10 @@ struct FlightLoop {
                                          const Reference& current)>
       update_reference;
   double ground_z = 0.0;  // [m] the floor's height, for the turbulence's scale lengths
+  Completion completion;
+  // Asked at each control step with the flight time [s] and the true state: true ends the flight
+  // (FlightStatus::kTerminated). Empty: no rule of its own.
+  std::function<bool(double t, const State& state)> terminate;
   // [s] of flight from which the setpoint is NaN (a fault test's; infinity: never)
   double nonfinite_setpoint_from = std::numeric_limits<double>::infinity();
 };

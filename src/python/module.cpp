@@ -108,6 +108,54 @@ class RecordedController : public Controller {
   std::vector<std::string> columns_;
 };
 
+// run()'s `terminate` (as RotorPy's and flightsim's): None, the flight is complete when the
+// vehicle rests at the trajectory's end (an object without a duration: at its update(inf),
+// from 1 s on when it starts there, else at once); False, never; a function f(t, state), when
+// it returns something true (FlightStatus::kTerminated). What f raises is kept in `error`.
+struct Termination {
+  std::exception_ptr error;
+
+  void Into(const py::object& terminate, const py::object& trajectory, bool duration_known,
+            const Reference& reference, FlightLoop* loop) {
+    if (terminate.is_none()) {
+      if (!duration_known) loop->completion = OpenEnd(trajectory, reference);
+    } else if (py::isinstance<py::bool_>(terminate)) {
+      if (!terminate.cast<bool>()) loop->completion.kind = Completion::Kind::kNever;
+    } else if (PyCallable_Check(terminate.ptr())) {
+      loop->completion.kind = Completion::Kind::kNever;
+      loop->terminate = [this, terminate, loop](double t, const State& state) {
+        try {
+          py::dict seen = StateDict(state, Vec4::Zero(), *loop->vehicle, Vec3::Zero());
+          seen.attr("pop")("wind");  // the true state alone: x, v, q, w
+          seen.attr("pop")("rotor_speeds");
+          return py::bool_(terminate(t, seen)).cast<bool>();
+        } catch (py::error_already_set&) {
+          error = std::current_exception();
+          return true;
+        }
+      };
+    } else {
+      throw py::value_error("terminate: expected None, False or a function f(t, state)");
+    }
+  }
+
+  // flightsim's end of a trajectory without a duration: its update(inf); none when that fails
+  static Completion OpenEnd(const py::object& trajectory, const Reference& reference) {
+    Completion completion;
+    completion.kind = Completion::Kind::kNever;
+    try {
+      const FlatOutput end =
+          FlatFromDict(trajectory.attr("update")(INFINITY), INFINITY, "trajectory.update");
+      completion.kind = Completion::Kind::kAtPoint;
+      completion.point = end.p_W;
+      completion.from = end.p_W == reference.evaluate(0.0, kPosition) ? 1.0 : 0.0;
+    } catch (const py::error_already_set&) {
+    } catch (const py::value_error&) {
+    }
+    return completion;
+  }
+};
+
 class SimulatorCore {
  public:
   explicit SimulatorCore(SetupPtr setup)
@@ -162,7 +210,8 @@ class SimulatorCore {
   }
 
   py::tuple Run(const py::object& controller, const py::object& trajectory, double t_final,
-                double control_rate, const std::string& choice, bool reset) {
+                double control_rate, const std::string& choice, bool reset,
+                const py::object& terminate) {
     if (!(control_rate > 0)) throw py::value_error("control_rate must be positive [Hz]");
     if (!(t_final >= 0) || !std::isfinite(t_final)) {
       throw py::value_error("t_final must be a time >= 0 [s] (0: the trajectory's duration)");
@@ -217,10 +266,13 @@ class SimulatorCore {
     loop.clearance = [this](const Vec3& p) { return world_.Clearance(p); };
     AddAirAndSensors(*record->setup, &loop);
     loop.telemetry = [&record](const TelemetrySample& s) { record->samples.push_back(s); };
+    Termination termination;
+    termination.Into(terminate, trajectory, duration_known, reference, &loop);
     const auto begin = std::chrono::steady_clock::now();
     record->flight = Checked([&] { return FlyTrajectory(reference, params, loop, &sim_); });
     // the user's exception (or a command that cannot be flown) raised in Python, as it was
     if (users != nullptr) users->RethrowIfFailed();
+    if (termination.error) std::rethrow_exception(termination.error);
     record->wall_time =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
 
@@ -234,7 +286,11 @@ class SimulatorCore {
     plan.result.status = PlanStatus::kSolved;
     plan.planner = "given";
     std::string status = ToString(record->flight.status);
-    if (!duration_known && record->flight.status == FlightStatus::kTimeout) status = "completed";
+    // flown to t_final as asked, with no end to reach: not a failure
+    if (loop.completion.kind == Completion::Kind::kNever && !loop.terminate &&
+        record->flight.status == FlightStatus::kTimeout) {
+      status = "completed";
+    }
     return py::make_tuple(Result(*record, status), record);
   }
 
@@ -668,7 +724,8 @@ PYBIND11_MODULE(_aerobox, m) {
       .def("reset", &SimulatorCore::Reset, py::arg("seed"), py::arg("state"))
       .def("step", &SimulatorCore::Step, py::arg("command"), py::arg("dt"), py::arg("command_kind"))
       .def("run", &SimulatorCore::Run, py::arg("controller"), py::arg("trajectory"),
-           py::arg("t_final"), py::arg("control_rate"), py::arg("command_kind"), py::arg("reset"))
+           py::arg("t_final"), py::arg("control_rate"), py::arg("command_kind"), py::arg("reset"),
+           py::arg("terminate"))
       .def("contacts", &SimulatorCore::Contacts)
       .def_property_readonly("time", &SimulatorCore::Time)
       .def_property_readonly("state", &SimulatorCore::StateNow)

@@ -218,6 +218,61 @@ class Sandbox(unittest.TestCase):
                 World.from_file(path)
 
 
+class RunEnds(unittest.TestCase):
+    """Simulator.run() ends a run when the flight is done, also for a trajectory object with no
+    duration (a student's: its end is update(inf)), unless told otherwise."""
+
+    @classmethod
+    def setUpClass(cls):
+        with tempfile.TemporaryDirectory() as folder:
+            path = os.path.join(folder, "world.json")
+            with open(path, "w") as file:
+                json.dump(WINDOW_WORLD, file)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")  # the Izz note, tested above
+                cls.sim = aerobox.Simulator(path, vehicle=QUAD_PARAMS, start=[1.0, 1.0, 1.0])
+        cls.route = [[1.0, 1.0, 1.0], [3.0, 2.0, 1.5], [3.0, 4.0, 1.5], [5.0, 5.0, 1.5]]
+
+    def fly(self, **options):
+        return self.sim.run(SE3Control(QUAD_PARAMS), WorldTraj(self.route), t_final=60,
+                            control_rate=500, command="cmd_motor_speeds", **options)
+
+    def test_ends_when_done(self):
+        end = WorldTraj(self.route).times[-1]
+        result = self.fly()
+        self.assertEqual(result["status"], "reached goal")
+        self.assertEqual(result["collisions"], 0)
+        # flightsim's rule: within 2 cm below 3 cm/s, which a quintic's last leg meets a
+        # little before its end
+        self.assertGreater(result["flight_time"], end - 0.3)
+        self.assertLess(result["flight_time"], end + 2.0)  # not 60 s
+        self.assertLess(np.linalg.norm(result["state"]["x"][-1] - self.route[-1]), 0.02)
+
+    def test_terminate_false_and_a_function(self):
+        result = self.fly(terminate=False)
+        self.assertEqual(result["status"], "completed")
+        self.assertAlmostEqual(result["flight_time"], 60.0, delta=0.0015)  # a physics step
+        seen = []
+
+        def past_the_window(t, state):
+            seen.append(sorted(state))
+            return state["x"][1] > 3.5
+
+        result = self.fly(terminate=past_the_window)
+        self.assertEqual(result["status"], "terminated")
+        self.assertGreater(result["state"]["x"][-1][1], 3.5)
+        self.assertLess(result["state"]["x"][-1][1], 3.6)
+        self.assertEqual(seen[0], ["q", "v", "w", "x"])
+
+        def broken(t, state):
+            raise KeyError("no such key")
+
+        with self.assertRaises(KeyError):
+            self.fly(terminate=broken)
+        with self.assertRaisesRegex(ValueError, "terminate: expected None, False or a function"):
+            self.fly(terminate="soon")
+
+
 class Equations(unittest.TestCase):
     """flightsim's vehicle flown by aerobox against flightsim's equations of motion (a rigid
     body, rotor forces k_thrust w^2 along body z at the "+" arms, yaw moments +-k_drag w^2, no

@@ -357,7 +357,7 @@ class Simulator:
         return self._core.contacts()
 
     def run(self, controller, trajectory, t_final=0.0, control_rate=None, command="auto",
-            reset=True):
+            reset=True, terminate=None):
         """Flies `trajectory` with `controller` and returns RotorPy's result dict.
 
         controller: any object with update(t, state, flat_output) -> dict, or a built-in by
@@ -374,9 +374,15 @@ class Simulator:
             (x required; x_dot ... x_ddddot, yaw, yaw_dot default to 0) and a `duration` or
             `t_final` [s] attribute (otherwise t_final is required).
         t_final: [s] when the run ends at the latest; 0: the trajectory's duration plus the
-            scenario's settle time (5 s). The run ends earlier once the vehicle is within
-            0.10 m of the trajectory's end below 0.10 m/s (after its duration), or on contact,
-            fly-away (2 m off the setpoint) or a non-finite state.
+            scenario's settle time (5 s). It ends earlier on completion (`terminate`) and on
+            every failure: contact, fly-away (2 m off the setpoint), a non-finite state.
+        terminate: None: complete ("reached goal") once the vehicle rests at the trajectory's
+            end: within the scenario's goal_tolerance (0.10 m) below its goal_speed (0.10 m/s)
+            after its duration, or, for an object without one, at its update(inf) within 2 cm
+            below 3 cm/s, as flightsim and RotorPy find the end (from 1 s on when the
+            trajectory starts there; status "timeout" when never reached by t_final); False: never, the run ends at t_final
+            ("completed"); a function f(t, state) -> truthy ends it ("terminated"), called at
+            each control step with the true state (x, v, q, w), as RotorPy's.
         control_rate: [Hz] of controller.update (must divide 1000); None: the scenario's
             [controller] rate, as `aerobox fly` uses it (250 Hz unless the scenario says).
         reset: start from the simulator's start (hovering at the trajectory's first point when
@@ -386,8 +392,8 @@ class Simulator:
         [N] as sent to the rotors, cmd_thrust (N,) [N], cmd_moment (N, 3) [N m]}; flat {x, x_dot,
         x_ddot, x_dddot, x_ddddot (N, 3), yaw, yaw_dot (N,)}; rotor_thrusts (N, 4) [N] produced;
         position_error, clearance (N,) [m]; status ("reached goal", "collision", "timeout",
-        "fly-away", "non-finite state", "completed" for a trajectory without a duration run to
-        t_final); reached_goal, collisions, collision_with, min_clearance [m], tracking_rms,
+        "fly-away", "non-finite state", "completed": run to t_final with no end to reach,
+        "terminated": by `terminate`); reached_goal, collisions, collision_with, min_clearance [m], tracking_rms,
         tracking_max [m], flight_time [s], distance [m], top_speed [m/s], peak_rotor_fraction,
         rotor_saturated_time [s], wall_time [s], seed; wind (N, 3) [m/s] at the vehicle, drag
         (N, 3) [N], max_wind [m/s]. With sensors on, the controller flies on the estimate:
@@ -403,7 +409,7 @@ class Simulator:
         if control_rate is None:
             control_rate = self._core.setup.control_rate
         result, record = self._core.run(controller, trajectory, float(t_final),
-                                        float(control_rate), command, reset)
+                                        float(control_rate), command, reset, terminate)
         result["vehicle_notes"] = list(self.vehicle_notes)
         result["_record"] = record
         return result
