@@ -6,6 +6,7 @@ layout, its yaw signs, no motor lag) as flightsim's own equations of motion do."
 import json
 import math
 import os
+import sys
 import tempfile
 import unittest
 import warnings
@@ -14,6 +15,9 @@ import numpy as np
 
 import aerobox
 from aerobox.flightsim import ExitStatus, Quadrotor, World, simulate
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from se3_controller import rotation_matrix as rotation  # noqa: E402
 
 # flightsim's Crazyflie (MEAM620's crazyflie_params)
 QUAD_PARAMS = {
@@ -33,15 +37,6 @@ WINDOW_WORLD = {
     "start": [1.0, 1.0, 1.0],
     "goal": [5.0, 5.0, 1.5],
 }
-
-
-def rotation(q):
-    x, y, z, w = q
-    return np.array([
-        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
-    ])
 
 
 class SE3Control:
