@@ -76,7 +76,6 @@ void PlaceVehicleAtStart(const Map& map, const QuadParams& vehicle, const Vec3& 
 
 namespace {
 
-// Why the flight ends after this control and inner-loop step, if it does: lost, arrived, late.
 // Whether the vehicle rests where the flight ends (Completion), at the reference's time tr [s].
 bool Complete(const FlightParams& params, const Completion& completion, double tr, double duration,
               const State& state, const Vec3& end) {
@@ -84,15 +83,17 @@ bool Complete(const FlightParams& params, const Completion& completion, double t
     case Completion::Kind::kNever:
       return false;
     case Completion::Kind::kAtEnd:
-      if (tr < duration) return false;
-      break;
+      return tr >= duration && (state.p_W - end).norm() < params.goal_tolerance &&
+             state.v_W.norm() < params.goal_speed;
     case Completion::Kind::kAtPoint:
       return tr >= completion.from &&
              (state.p_W - completion.point).norm() < completion.point_tolerance &&
              state.v_W.norm() <= completion.point_speed;
   }
-  return (state.p_W - end).norm() < params.goal_tolerance && state.v_W.norm() < params.goal_speed;
+  return false;
 }
+
+// Why the flight ends after this control and inner-loop step, if it does: lost, arrived, late.
 
 std::optional<FlightStatus> Verdict(const FlightParams& params, const FlightLoop& loop,
                                     const Takeoff& takeoff, double t, double tr, double duration,

@@ -6,6 +6,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -156,6 +157,26 @@ struct Termination {
   }
 };
 
+// A copy of `setup` flying a quad_params dict, with what was ignored ((key, why) pairs),
+// adjusted and added (Simulator's vehicle notes).
+py::tuple WithVehicle(const FlightSetup& setup, const py::object& vehicle) {
+  auto copy = std::make_shared<FlightSetup>(setup);
+  VehicleNotes notes;
+  copy->vehicle = VehicleFromDict(vehicle, SceneOptions{}.timestep, &notes);
+  copy->vehicle_kind = "dict";
+  const py::dict dict = vehicle.cast<py::dict>();
+  const auto has = [&dict](const char* key) { return dict.contains(key); };
+  const char* const kDrag[] = {"c_Dx", "c_Dy", "c_Dz", "k_d", "k_z"};
+  if (!setup.aero.Enabled() && std::any_of(std::begin(kDrag), std::end(kDrag), has)) {
+    notes.adjusted.push_back(
+        "c_Dx ... k_z: read, but drag acts only with aero={'drag': True} (RotorPy's Multirotor "
+        "has it on by default)");
+  }
+  py::list ignored;
+  for (const auto& [key, why] : notes.ignored) ignored.append(py::make_tuple(key, why));
+  return py::make_tuple(copy, ignored, notes.adjusted, notes.added);
+}
+
 class SimulatorCore {
  public:
   explicit SimulatorCore(SetupPtr setup)
@@ -276,22 +297,8 @@ class SimulatorCore {
     record->wall_time =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
 
-    // what was planned, as write_outputs shows it: the waypoints (or the ends) and the
-    // trajectory (the user's sampled at the control rate)
-    PlanOutcome& plan = record->plan;
-    plan.start.requested = plan.start.used =
-        record->samples.empty() ? sim_.VehicleState().p_W : record->samples.front().state.p_W;
-    plan.goal.requested = plan.goal.used = reference.evaluate(reference.duration, kPosition);
-    if (plan.result.path.empty()) plan.result.path = {first, plan.goal.used};
-    plan.result.status = PlanStatus::kSolved;
-    plan.planner = "given";
-    std::string status = ToString(record->flight.status);
-    // flown to t_final as asked, with no end to reach: not a failure
-    if (loop.completion.kind == Completion::Kind::kNever && !loop.terminate &&
-        record->flight.status == FlightStatus::kTimeout) {
-      status = "completed";
-    }
-    return py::make_tuple(Result(*record, status), record);
+    RecordPlan(reference, first, record.get());
+    return py::make_tuple(Result(*record, StatusOf(record->flight, loop)), record);
   }
 
   py::dict VehicleParams() const { return VehicleDict(setup_->vehicle); }
@@ -299,6 +306,28 @@ class SimulatorCore {
   const SetupPtr& setup() const { return setup_; }
 
  private:
+  // What was planned, as write_outputs shows it: the waypoints (or the ends) and the trajectory
+  // (the user's sampled at the control rate).
+  void RecordPlan(const Reference& reference, const Vec3& first, FlightRecord* record) const {
+    PlanOutcome& plan = record->plan;
+    plan.start.requested = plan.start.used =
+        record->samples.empty() ? sim_.VehicleState().p_W : record->samples.front().state.p_W;
+    plan.goal.requested = plan.goal.used = reference.evaluate(reference.duration, kPosition);
+    if (plan.result.path.empty()) plan.result.path = {first, plan.goal.used};
+    plan.result.status = PlanStatus::kSolved;
+    plan.planner = "given";
+  }
+
+  // The flight's status in words; "completed" for one flown to t_final as asked, with no end
+  // to reach (not a failure).
+  static std::string StatusOf(const FlightResult& flight, const FlightLoop& loop) {
+    if (loop.completion.kind == Completion::Kind::kNever && !loop.terminate &&
+        flight.status == FlightStatus::kTimeout) {
+      return "completed";
+    }
+    return ToString(flight.status);
+  }
+
   py::dict Result(const FlightRecord& record, const std::string& status) const {
     const std::vector<TelemetrySample>& s = record.samples;
     const py::ssize_t n = static_cast<py::ssize_t>(s.size());
@@ -622,24 +651,7 @@ PYBIND11_MODULE(_aerobox, m) {
              const CollisionWorld world(s.map, CollisionParams{s.vehicle.collision_size, 0.0});
              return world.Clearance(PointFrom(point, "point"));
            })
-      .def("with_vehicle", [](const FlightSetup& s, const py::object& vehicle) {
-        auto copy = std::make_shared<FlightSetup>(s);
-        VehicleNotes notes;
-        copy->vehicle = VehicleFromDict(vehicle, SceneOptions{}.timestep, &notes);
-        copy->vehicle_kind = "dict";
-        const py::dict dict = vehicle.cast<py::dict>();
-        for (const char* key : {"c_Dx", "c_Dy", "c_Dz", "k_d", "k_z"}) {
-          if (dict.contains(key) && !s.aero.Enabled()) {
-            notes.adjusted.push_back(
-                "c_Dx ... k_z: read, but drag acts only with aero={'drag': True} (RotorPy's "
-                "Multirotor has it on by default)");
-            break;
-          }
-        }
-        py::list ignored;
-        for (const auto& [key, why] : notes.ignored) ignored.append(py::make_tuple(key, why));
-        return py::make_tuple(copy, ignored, notes.adjusted, notes.added);
-      });
+      .def("with_vehicle", &WithVehicle);
 
   m.def(
       "_load",

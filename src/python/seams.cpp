@@ -164,16 +164,26 @@ State StateFromDict(py::handle value) {
   return state;
 }
 
+namespace {
+
+// Rotor speeds [rad/s] as thrusts [N], each clipped to the rotors' range first, as RotorPy and
+// flightsim do (a negative speed is the slowest, not a thrust of its square).
+Vec4 ThrustsAtSpeeds(const Vec4& speeds, const QuadParams& vehicle) {
+  const double slowest = vehicle.RotorSpeedFor(vehicle.min_rotor_thrust);
+  const double fastest = vehicle.RotorSpeedFor(vehicle.max_rotor_thrust);
+  Vec4 thrusts;
+  for (int i = 0; i < kNumRotors; ++i) {
+    thrusts[i] = vehicle.ThrustAtSpeed(std::clamp(speeds[i], slowest, fastest));
+  }
+  return thrusts;
+}
+
+}  // namespace
+
 Vec4 RotorThrustsFromState(py::handle value, const QuadParams& vehicle) {
   const py::dict dict = AsDict(value, "state");
   if (!dict.contains("rotor_speeds")) return Vec4::Constant(vehicle.HoverThrustPerRotor());
-  const Vec4 speeds = Require<4>(dict, "rotor_speeds", "state");
-  Vec4 thrusts;
-  for (int i = 0; i < kNumRotors; ++i) {
-    thrusts[i] = std::clamp(vehicle.ThrustAtSpeed(speeds[i]), vehicle.min_rotor_thrust,
-                            vehicle.max_rotor_thrust);
-  }
-  return thrusts;
+  return ThrustsAtSpeeds(Require<4>(dict, "rotor_speeds", "state"), vehicle);
 }
 
 py::dict FlatDict(const FlatOutput& flat) {
@@ -252,14 +262,7 @@ ControlCommand CommandFromDict(py::handle value, CommandChoice choice, const Qua
       break;
     case CommandChoice::kMotorSpeeds: {
       command.level = CommandLevel::kRotorThrusts;
-      const Vec4 speeds = Require<4>(dict, "cmd_motor_speeds", where);
-      // clipped to the rotors' range first, as RotorPy and flightsim do (a negative speed is
-      // the slowest, not a thrust of its square)
-      const double slowest = vehicle.RotorSpeedFor(vehicle.min_rotor_thrust);
-      const double fastest = vehicle.RotorSpeedFor(vehicle.max_rotor_thrust);
-      for (int i = 0; i < kNumRotors; ++i) {
-        command.rotor_thrusts[i] = vehicle.ThrustAtSpeed(std::clamp(speeds[i], slowest, fastest));
-      }
+      command.rotor_thrusts = ThrustsAtSpeeds(Require<4>(dict, "cmd_motor_speeds", where), vehicle);
       break;
     }
     case CommandChoice::kThrustMoment:
@@ -410,10 +413,11 @@ void ReadMotorLag(DictReader& d, bool flightsim, double step, QuadParams* v) {
   }
   double sum = 0.0;
   for (py::ssize_t i = 0; i < taus.size(); ++i) sum += taus.data()[i];
-  v->motor_time_constant = std::max(sum / static_cast<double>(taus.size()), step);
-  if (v->motor_time_constant != sum / static_cast<double>(taus.size())) {
-    d.Adjusted("tau_m " + FormatNumber(sum / static_cast<double>(taus.size())) + " -> " +
-               FormatNumber(step) + " s (the physics step: no lag is shorter)");
+  const double mean = sum / static_cast<double>(taus.size());
+  v->motor_time_constant = std::max(mean, step);
+  if (mean < step) {
+    d.Adjusted("tau_m " + FormatNumber(mean) + " -> " + FormatNumber(step) +
+               " s (the physics step: no lag is shorter)");
   }
 }
 

@@ -329,6 +329,14 @@ class Equations(unittest.TestCase):
             expected[10:13]).max()))
         np.testing.assert_allclose(state["x"], expected[0:3], atol=2e-3)
 
+    def test_negative_speeds_are_the_slowest(self):
+        # clipped to the rotors' range before squaring, in the command and in the rotors' state
+        quadrotor = Quadrotor(QUAD_PARAMS)
+        stopped = quadrotor.step(at_rest([0, 0, 2.0]), np.zeros(4), 0.01)
+        negative = quadrotor.step(at_rest([0, 0, 2.0]), np.full(4, -900.0), 0.01)
+        np.testing.assert_array_equal(negative["v"], stopped["v"])
+        self.assertAlmostEqual(stopped["v"][2], -9.81 * 0.01, delta=1e-6)
+
     def test_flightsim_dict_in_the_simulator(self):
         with tempfile.TemporaryDirectory() as folder:
             path = os.path.join(folder, "world.json")

@@ -263,24 +263,18 @@ def _empty_world_simulator(quad_params, position, loud):
         path = os.path.join(folder, "empty.json")
         with open(path, "w") as file:
             json.dump(_plain(world), file)
-        with warnings.catch_warnings(record=True) as caught:
+        with warnings.catch_warnings(record=True):  # said below, as flightsim means it
             warnings.simplefilter("always")
             sim = Simulator(path, vehicle=quad_params, start=position)
-    # flightsim's dict never gives what aerobox adds (no motor lag, flightsim's yaw signs, a
-    # collision box): only what changes the flight is said
-    notes = [n for n in sim.vehicle_notes if not n.startswith(("added rotor_directions",
-                                                               "added rotor_radius",
-                                                               "added tau_m",
-                                                               "added rotor_speed_min"))
-            or not _is_flightsim(quad_params)]
+    # what aerobox adds to flightsim's dict is flightsim's meaning (no motor lag, its yaw signs,
+    # rotors that may stop; a collision box, for a flight with no obstacles): only what changes
+    # the flight is said
+    flightsim = "rotor_pos" not in quad_params and "arm_length" in quad_params
+    notes = [n for n in sim.vehicle_notes if not (flightsim and n.startswith("added "))]
     if loud and notes:
         warnings.warn("aerobox.flightsim: the vehicle dict, as aerobox flies it:\n  "
                       + "\n  ".join(notes), stacklevel=4)
     return sim
-
-
-def _is_flightsim(quad_params):
-    return "rotor_pos" not in quad_params and "arm_length" in quad_params
 
 
 def _trajectory_end_exit(initial_state, trajectory):
