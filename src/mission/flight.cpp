@@ -122,8 +122,8 @@ bool AllFinite(const State& s) {
   return s.p_W.allFinite() && s.v_W.allFinite() && s.q_WB.coeffs().allFinite() && s.w_B.allFinite();
 }
 
-double YawOf(const Simulation& sim) {
-  const Vec3 x_W = sim.VehicleState().q_WB * Vec3::UnitX();
+double YawOf(const State& state) {
+  const Vec3 x_W = state.q_WB * Vec3::UnitX();
   return std::atan2(x_W.y(), x_W.x());
 }
 
@@ -131,45 +131,39 @@ double YawOf(const Simulation& sim) {
 class FlightRun {
  public:
   FlightRun(const Reference& reference, const FlightParams& params, const FlightLoop& loop,
-            Simulation* sim)
+            VehicleWorld* world)
       : params_(params),
         loop_(loop),
-        sim_(sim),
-        step_(sim->timestep()),
-        divider_(StepsPerPeriod(loop.control_rate, step_, "the controller's rate")),
-        inner_(loop.inner, *loop.vehicle),
-        setpoints_(reference, params.face_travel, YawOf(*sim)),
+        world_(world),
+        divider_(StepsPerPeriod(loop.control_rate, world->step(), "the controller's rate")),
+        setpoints_(reference, params.face_travel, YawOf(world->Truth())),
         goal_(reference.evaluate(reference.duration, kPosition)),
-        takeoff_(reference.evaluate(0.0, kPosition), sim->VehicleState(),
-                 !sim->VehicleContacts().empty()),
+        takeoff_(reference.evaluate(0.0, kPosition), world->Truth(),
+                 !world->sim().VehicleContacts().empty()),
         nan_from_(loop.nonfinite_setpoint_from),
-        air_(loop.wind, loop.aero, *loop.vehicle, loop.seed, loop.ground_z),
         metrics_(*loop.vehicle) {
-    if (loop.sensors.Enabled()) {
-      sensing_.emplace(loop.sensors, loop.seed, step_, 0.0, sim->VehicleState());
-    }
     result_.control_rate = loop.control_rate;
-    sim_->TakeNewWarnings();  // what loading and placing raised is not the flight's
-    t0_ = sim_->time();
+    world_->sim().TakeNewWarnings();  // what loading and placing raised is not the flight's
+    t0_ = world_->time();
   }
 
   // The k-th physics step: sense, control, judge, step the physics. False when it has ended.
   bool Step(long k) {
-    const double t = sim_->time() - t0_;
+    const double t = world_->time() - t0_;
     // Ctrl-C ends the run here, between two physics steps
     ThrowIfStopRequested([t] {
       char at[32];
       std::snprintf(at, sizeof(at), "%.2f", t);
       return "flying (at t = " + std::string(at) + " s)";
     });
-    const State state = sim_->VehicleState();
+    const State state = world_->Truth();
     if (!AllFinite(state)) return End(FlightStatus::kNonFinite);
-    const double tr = takeoff_.ReferenceTime(t, state);          // the reference's own time [s]
-    const State seen = sensing_ ? sensing_->Estimate() : state;  // what the controller sees
+    const double tr = takeoff_.ReferenceTime(t, state);  // the reference's own time [s]
+    const State seen = world_->Seen(state);              // what the controller sees
     const bool control_step = k % divider_ == 0;
     if (control_step && !Control(t, tr, seen)) return false;
     // the inner loops every step, on the command held between control steps
-    if (!inner_.Run(command_, seen, step_, &inner_out_)) return End(FlightStatus::kNonFinite);
+    if (!world_->Command(command_, seen)) return End(FlightStatus::kNonFinite);
     ReachGoals(t, state);
     const double error = (state.p_W - setpoint_.p_W).norm();
     if (control_step) Record(t, state, seen, error);
@@ -181,14 +175,14 @@ class FlightRun {
                     result_.goal_times.size())) {
       return End(*verdict);
     }
-    return Physics(t, state);
+    return Physics(state);
   }
 
   FlightResult Finish() {
-    result_.time = sim_->time() - t0_;
+    result_.time = world_->time() - t0_;
     result_.takeoff_time = takeoff_.time();
     metrics_.Fill(&result_);
-    air_.Clear(sim_);
+    world_->ClearAir();
     return std::move(result_);
   }
 
@@ -209,7 +203,7 @@ class FlightRun {
     }
     setpoint_ = setpoints_.At(tr);
     if (t >= nan_from_) setpoint_.p_W.x() = std::numeric_limits<double>::quiet_NaN();
-    loop_.controller->Sense({air_.wind(), sim_->RotorThrusts()});
+    loop_.controller->Sense(world_->Now());
     ControlStatus control = loop_.controller->Update(t, seen, setpoint_, &command_);
     if (control.ok()) return true;
     result_.message = std::move(control.message);
@@ -232,34 +226,32 @@ class FlightRun {
   void Record(double t, const State& state, const State& seen, double error) {
     const double c =
         loop_.clearance ? loop_.clearance(state.p_W) : std::numeric_limits<double>::infinity();
+    const SensorSuite* sensing = world_->sensing();
     metrics_.ControlStep(
         error, !takeoff_.lifting(), c,
-        sensing_ ? std::optional<double>((seen.p_W - state.p_W).norm()) : std::nullopt);
+        sensing ? std::optional<double>((seen.p_W - state.p_W).norm()) : std::nullopt);
     if (!loop_.telemetry) return;
     loop_.controller->Report(&report_);
     loop_.telemetry(
-        {t, state, setpoint_, command_, inner_out_, sim_->RotorThrusts(), error, c, report_,
-         static_cast<int>(result_.goal_times.size()), result_.replans, air_.wind(),
-         air_.wrench().force_W,
-         sensing_ ? std::optional<EstimateSample>(sensing_->Sample(state)) : std::nullopt});
+        {t, state, setpoint_, command_, world_->inner(), world_->sim().RotorThrusts(), error, c,
+         report_, static_cast<int>(result_.goal_times.size()), result_.replans,
+         world_->air().wind(), world_->air().wrench().force_W,
+         sensing ? std::optional<EstimateSample>(sensing->Sample(state)) : std::nullopt});
   }
 
   // The physics step, in the air; then what MuJoCo says of it (a warning, a contact).
-  bool Physics(double t, const State& state) {
-    air_.BeforeStep(t, step_, state, sim_);
-    metrics_.PhysicsStep(inner_out_.mixer.thrusts, step_, state, air_.wind());
-    sim_->Step(inner_out_.mixer.thrusts);
+  bool Physics(const State& state) {
+    const State after = world_->Step(state);
+    metrics_.PhysicsStep(world_->inner().mixer.thrusts, world_->step(), state,
+                         world_->air().wind());
     ++result_.steps;
-    const State after = sim_->VehicleState();
     metrics_.Moved(state, after);
-    if (sensing_) {
-      sensing_->AfterStep(sim_->time() - t0_, state, after, sim_->LinearAcceleration_W());
-    }
     // a warning means MuJoCo changed or distrusts the state (it resets the data after a bad
     // acceleration): nothing after it can be trusted
-    result_.message = sim_->TakeNewWarnings();
+    Simulation& sim = world_->sim();
+    result_.message = sim.TakeNewWarnings();
     if (!result_.message.empty()) return End(FlightStatus::kSimulationWarning);
-    const std::vector<VehicleContact> contacts = sim_->VehicleContacts();
+    const std::vector<VehicleContact> contacts = sim.VehicleContacts();
     if (const std::optional<std::string> hit = Collision(contacts, takeoff_.airborne())) {
       result_.obstacle = *hit;
       return End(FlightStatus::kCollision);
@@ -270,39 +262,43 @@ class FlightRun {
 
   const FlightParams& params_;
   const FlightLoop& loop_;
-  Simulation* sim_;
-  double step_;  // [s] physics
+  VehicleWorld* world_;
   int divider_;  // physics steps per control step
-  InnerLoops inner_;
   Setpoints setpoints_;
   Vec3 goal_;
   Takeoff takeoff_;
   double nan_from_;
-  Air air_;
-  std::optional<SensorSuite> sensing_;
   FlightMetrics metrics_;
   FlatOutput setpoint_;
   ControlCommand command_;
-  InnerOutput inner_out_;
   std::vector<double> report_;
   FlightResult result_;
-  double t0_ = 0.0;
+  double t0_ = 0.0;  // [s] the world's time when the flight began
 };
 
-}  // namespace
-
-FlightResult FlyTrajectory(const Reference& reference, const FlightParams& params,
-                           const FlightLoop& loop, Simulation* sim) {
+void CheckFlight(const FlightParams& params, const FlightLoop& loop) {
   params.Validate();
   if (loop.vehicle == nullptr || loop.controller == nullptr) {
     throw std::invalid_argument("FlyTrajectory: no vehicle or no controller");
   }
-  loop.wind.Validate();
-  loop.sensors.Validate(sim->timestep());
-  FlightRun run(reference, params, loop, sim);
+}
+
+}  // namespace
+
+FlightResult FlyTrajectory(const Reference& reference, const FlightParams& params,
+                           const FlightLoop& loop, VehicleWorld* world) {
+  CheckFlight(params, loop);
+  FlightRun run(reference, params, loop, world);
   for (long k = 0; run.Step(k); ++k) {
   }
   return run.Finish();
+}
+
+FlightResult FlyTrajectory(const Reference& reference, const FlightParams& params,
+                           const FlightLoop& loop, Simulation* sim) {
+  CheckFlight(params, loop);
+  VehicleWorld world(loop, sim);
+  return FlyTrajectory(reference, params, loop, &world);
 }
 
 FlightResult FlyTrajectory(const Reference& reference, const FlightParams& params,

@@ -144,6 +144,10 @@ struct FlightLoop {
   // The air and the sensors; all off by default, and then the flight is the ideal one, step
   // for step. With sensors on, the controller and the inner loops fly on the estimate.
   WindParams wind;
+  // The wind [m/s] at a point p_W [m] at flight time t [s], asked before each physics step: a
+  // user's own wind (RotorPy's wind profiles' update(t, position)), in place of `wind`. It acts
+  // through the drag (`aero`). Empty: `wind` blows.
+  std::function<Vec3(double t, const Vec3& p_W)> wind_source;
   AeroParams aero;
   SensorParams sensors;
   std::uint64_t seed = 1;  // the turbulence's and the sensors' (common/seed.h streams)
@@ -168,12 +172,20 @@ struct FlightLoop {
   double nonfinite_setpoint_from = std::numeric_limits<double>::infinity();
 };
 
+class VehicleWorld;  // mission/flight_parts.h
+
 // Flies the reference from the simulation's current state (at rest on the floor or in the air
 // at the trajectory's start) and holds its end until reached. A vehicle resting on the floor
 // may touch it until it lifts off; any other contact is a collision. Throws
 // std::invalid_argument for bad parameters (a rate that does not divide the physics rate).
 FlightResult FlyTrajectory(const Reference& reference, const FlightParams& params,
                            const FlightLoop& loop, Simulation* sim);
+
+// The same in a world already made (its air, sensors and estimator going on from where they
+// are); the loop's own wind, drag, sensors, seed and inner-loop parameters are the world's, not
+// read again. The flight's clock starts at the world's time now.
+FlightResult FlyTrajectory(const Reference& reference, const FlightParams& params,
+                           const FlightLoop& loop, VehicleWorld* world);
 
 // The same with the controller `control.kind` names, made for `vehicle`.
 FlightResult FlyTrajectory(const Reference& reference, const FlightParams& params,

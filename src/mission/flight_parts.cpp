@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <tuple>
+#include <utility>
 
 #include "common/seed.h"
 
@@ -68,23 +70,64 @@ FlatOutput Setpoints::At(double tr) {
 }
 
 Air::Air(const WindParams& wind, const AeroParams& aero, const QuadParams& vehicle,
-         std::uint64_t seed, double ground_z)
-    : aero_(aero), vehicle_(&vehicle), ground_z_(ground_z) {
-  if (wind.Enabled()) field_.emplace(wind, StreamSeed(seed, SeedStream::kTurbulence));
-  enabled_ = field_.has_value() || aero.Enabled();
+         std::uint64_t seed, double ground_z, std::function<Vec3(double t, const Vec3& p_W)> source)
+    : source_(std::move(source)), aero_(aero), vehicle_(&vehicle), ground_z_(ground_z) {
+  if (wind.Enabled() && !source_) {
+    field_.emplace(wind, StreamSeed(seed, SeedStream::kTurbulence));
+  }
+  enabled_ = field_.has_value() || source_ || aero.Enabled();
   if (field_) wind_W_ = field_->current();
+}
+
+void Air::Begin(const State& state) {
+  if (source_) wind_W_ = source_(0.0, state.p_W);
 }
 
 void Air::BeforeStep(double t, double step, const State& state, Simulation* sim) {
   if (!enabled_) return;
   // the wind where the vehicle is, and the drag it causes, held over the step
-  if (field_) wind_W_ = field_->Step(t, step, state.p_W.z() - ground_z_, state.v_W);
+  if (source_) {
+    wind_W_ = source_(t, state.p_W);
+    if (!wind_W_.allFinite()) throw std::invalid_argument("the wind is not finite");
+  } else if (field_) {
+    wind_W_ = field_->Step(t, step, state.p_W.z() - ground_z_, state.v_W);
+  }
   wrench_ = AerodynamicWrench(*vehicle_, aero_, state, sim->RotorThrusts(), wind_W_);
   sim->SetExternalWrench(wrench_.force_W, wrench_.torque_W);
 }
 
 void Air::Clear(Simulation* sim) const {
   if (enabled_) sim->SetExternalWrench(Vec3::Zero(), Vec3::Zero());
+}
+
+namespace {
+
+// The physics step [s], once the world's parameters are checked against it.
+double CheckedStep(const FlightLoop& loop, const Simulation& sim) {
+  if (loop.vehicle == nullptr) throw std::invalid_argument("VehicleWorld: no vehicle");
+  loop.wind.Validate();
+  loop.sensors.Validate(sim.timestep());
+  return sim.timestep();
+}
+
+}  // namespace
+
+VehicleWorld::VehicleWorld(const FlightLoop& loop, Simulation* sim)
+    : sim_(sim),
+      step_(CheckedStep(loop, *sim)),
+      t0_(sim->time()),
+      inner_(loop.inner, *loop.vehicle),
+      air_(loop.wind, loop.aero, *loop.vehicle, loop.seed, loop.ground_z, loop.wind_source) {
+  air_.Begin(Truth());
+  if (loop.sensors.Enabled()) sensing_.emplace(loop.sensors, loop.seed, step_, 0.0, Truth());
+}
+
+State VehicleWorld::Step(const State& truth) {
+  air_.BeforeStep(time(), step_, truth, sim_);
+  sim_->Step(inner_out_.mixer.thrusts);
+  const State after = Truth();
+  if (sensing_) sensing_->AfterStep(time(), truth, after, sim_->LinearAcceleration_W());
+  return after;
 }
 
 FlightMetrics::FlightMetrics(const QuadParams& vehicle)

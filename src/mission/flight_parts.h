@@ -4,12 +4,16 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 
 #include "common/flat_output.h"
 #include "common/state.h"
+#include "control/controller.h"
+#include "control/inner_loops.h"
 #include "disturbance/aero.h"
 #include "disturbance/wind.h"
+#include "estimation/sensing.h"
 #include "mission/flight.h"
 #include "sim/simulation.h"
 
@@ -63,10 +67,13 @@ class Setpoints {
 // nothing and the flight is the still-air one, step for step.
 class Air {
  public:
+  // `source`, when set, replaces `wind` (FlightLoop::wind_source).
   Air(const WindParams& wind, const AeroParams& aero, const QuadParams& vehicle, std::uint64_t seed,
-      double ground_z);
+      double ground_z, std::function<Vec3(double t, const Vec3& p_W)> source = {});
 
   bool enabled() const { return enabled_; }
+  // The wind at the vehicle in `state` where the flight starts (a wind source's at t = 0).
+  void Begin(const State& state);
   // Before the physics step from `state` at flight time `t` [s] of `step` [s].
   void BeforeStep(double t, double step, const State& state, Simulation* sim);
   // Takes the wrench off the simulation (at the flight's end).
@@ -76,12 +83,56 @@ class Air {
 
  private:
   std::optional<WindField> field_;
+  std::function<Vec3(double t, const Vec3& p_W)> source_;
   AeroParams aero_;
   const QuadParams* vehicle_;
   double ground_z_;
   bool enabled_;
   Vec3 wind_W_ = Vec3::Zero();
   Wrench wrench_;
+};
+
+// One vehicle in its world below the controller's command, a physics step at a time: the inner
+// loops on what the vehicle senses, the air (wind and drag), the physics, then the sensors and
+// the estimator. The flight loop (FlyTrajectory) steps it and so does Python's Simulator.step,
+// so a loop of step() calls flies as run() does, to the bit. Its clock starts where it is made.
+class VehicleWorld {
+ public:
+  // From `loop`'s vehicle, inner loops, wind, drag, sensors, seed and floor, around `sim` (which
+  // must outlive it) as it is now. Throws std::invalid_argument for bad parameters.
+  VehicleWorld(const FlightLoop& loop, Simulation* sim);
+
+  double time() const { return sim_->time() - t0_; }  // [s] since the world was made
+  double step() const { return step_; }               // [s] of one physics step
+  State Truth() const { return sim_->VehicleState(); }
+  // What a controller flies on: the estimate with sensors on, else `truth`.
+  State Seen(const State& truth) const { return sensing_ ? sensing_->Estimate() : truth; }
+  // What a controller senses besides the state: the wind at the vehicle and the rotors' thrusts.
+  Surroundings Now() const { return {air_.wind(), sim_->RotorThrusts()}; }
+  // The inner loops below `command` for the next physics step, from `seen`; false (zero
+  // thrusts) when the command or the state is not finite.
+  bool Command(const ControlCommand& command, const State& seen) {
+    return inner_.Run(command, seen, step_, &inner_out_);
+  }
+  // The physics step from `truth` with the rotors' last commands, in the air; the sensors after
+  // it. Returns the state after the step.
+  State Step(const State& truth);
+  // Takes the air's wrench off the simulation (at a flight's end).
+  void ClearAir() { air_.Clear(sim_); }
+
+  const InnerOutput& inner() const { return inner_out_; }
+  const Air& air() const { return air_; }
+  const SensorSuite* sensing() const { return sensing_ ? &*sensing_ : nullptr; }
+  Simulation& sim() const { return *sim_; }
+
+ private:
+  Simulation* sim_;
+  double step_;  // [s] physics
+  double t0_;    // [s] the simulation's time when the world was made
+  InnerLoops inner_;
+  Air air_;
+  std::optional<SensorSuite> sensing_;
+  InnerOutput inner_out_;
 };
 
 // The numbers of a flight, kept as it goes: tracking from the reference's start, clearance, the

@@ -17,6 +17,7 @@
 
 #include "common/error.h"
 #include "geometry/collision_world.h"
+#include "mission/flight_parts.h"
 #include "mission/mission.h"
 #include "mission/plan.h"
 #include "outputs/files.h"
@@ -183,30 +184,71 @@ class SimulatorCore {
       : setup_(std::move(setup)),
         xml_(SceneMjcfFor(*setup_)),
         sim_(Load()),
-        world_(setup_->map, CollisionParams{setup_->vehicle.collision_size, 0.0}),
-        inner_(setup_->controller.inner, setup_->vehicle) {}
+        obstacles_(setup_->map, CollisionParams{setup_->vehicle.collision_size, 0.0}),
+        seed_(setup_->seed) {
+    base_.vehicle = &setup_->vehicle;
+    base_.inner = setup_->controller.inner;
+    Checked([&] { PlaceAtStart(setup_->start); });
+  }
 
   void Reset(long long seed, const py::object& state) {
     if (seed < 0) throw py::value_error("seed must be >= 0");
     seed_ = static_cast<std::uint64_t>(seed);
     sim_ = Load();
-    inner_ = InnerLoops(setup_->controller.inner, setup_->vehicle);
-    if (!state.is_none()) {
-      sim_.SetVehicleState(StateFromDict(state));
-      sim_.SetRotorThrusts(RotorThrustsFromState(state, setup_->vehicle));
+    if (state.is_none()) {
+      PlaceAtStart(setup_->start);
+      return;
     }
-    t0_ = sim_.time();
+    sim_.SetVehicleState(StateFromDict(state));
+    sim_.SetRotorThrusts(RotorThrustsFromState(state, setup_->vehicle));
+    MakeWorld();
   }
 
-  double Time() const { return sim_.time() - t0_; }
+  double Time() const { return world_->time(); }
 
-  py::dict StateNow() const {
-    // step() flies in still air (the wind acts in run())
-    return StateDict(sim_.VehicleState(), sim_.RotorThrusts(), setup_->vehicle, Vec3::Zero());
+  // A user's wind, any object with update(t, position) -> (3,) [m/s] (RotorPy's wind profiles),
+  // in place of the scenario's [wind], asked before each physics step; None: the scenario's.
+  // The world starts anew.
+  void SetWindSource(const py::object& wind) {
+    base_.wind_source = nullptr;
+    if (!wind.is_none()) {
+      if (!py::hasattr(wind, "update")) {
+        throw py::value_error(
+            "wind: expected a table of keys or an object with update(t, position)");
+      }
+      base_.wind_source = [update = wind.attr("update")](double t, const Vec3& p_W) {
+        return PointFrom(update(t, Vec3Array(p_W)), At("wind.update", t) + ": the wind");
+      };
+    }
+    wind_source_ = wind;
+    MakeWorld();
   }
 
+  // The last physics step's accelerations: vdot [m/s^2] (world) and wdot [rad/s^2] (body), as
+  // RotorPy's statedot gives them to its IMU.
+  py::dict StateDot() const {
+    py::dict dot;
+    dot["vdot"] = Vec3Array(sim_.LinearAcceleration_W());
+    dot["wdot"] = Vec3Array(sim_.AngularAcceleration_B());
+    return dot;
+  }
+
+  // The true state, with the wind at the vehicle and the rotors' speeds.
+  py::dict StateNow() const { return Seen(world_->Truth()); }
+
+  // The state a controller flies on (as run() gives it to controller.update): the estimate
+  // with sensors on, else the truth.
+  py::dict SeenNow() const { return Seen(world_->Seen(world_->Truth())); }
+
+  py::dict Seen(const State& state) const {
+    const Surroundings now = world_->Now();
+    return StateDict(state, now.rotor_thrusts, setup_->vehicle, now.wind_W);
+  }
+
+  // `command` held for dt [s]: each physics step as run() makes it, the inner loops on what
+  // the vehicle senses, in the same air, with the same sensors.
   py::dict Step(const py::object& command, double dt, const std::string& choice) {
-    const double step = sim_.timestep();
+    const double step = world_->step();
     const long steps = std::lround(dt / step);
     if (!(dt > 0) || steps < 1 || std::abs(steps * step - dt) > 1e-9) {
       throw py::value_error("dt " + std::to_string(dt) + " s must be a positive multiple of the " +
@@ -214,14 +256,14 @@ class SimulatorCore {
     }
     const ControlCommand parsed =
         CommandFromDict(command, ParseCommandChoice(choice), setup_->vehicle, Time(), "step");
-    InnerOutput out;
     for (long i = 0; i < steps; ++i) {
-      if (!inner_.Run(parsed, sim_.VehicleState(), step, &out)) {
+      const State truth = world_->Truth();
+      if (!world_->Command(parsed, world_->Seen(truth))) {
         throw py::value_error("step: the state or the command is not finite");
       }
-      sim_.Step(out.mixer.thrusts);
+      world_->Step(truth);
     }
-    return StateNow();
+    return SeenNow();
   }
 
   py::list Contacts() const {
@@ -271,9 +313,11 @@ class SimulatorCore {
       config.kind =
           "python:" + std::string(py::str(py::type::handle_of(controller).attr("__name__")));
     }
-    if (reset) Reset(static_cast<long long>(seed_), py::none());
     const Vec3 first = reference.evaluate(0.0, kPosition);
-    if (reset) PlaceVehicleAtStart(setup_->map, setup_->vehicle, setup_->start, first, &sim_);
+    if (reset) {
+      sim_ = Load();
+      PlaceAtStart(first);
+    }
     record->setup = std::make_shared<FlightSetup>(*setup_);
     record->setup->controller = config;
     record->setup->seed = seed_;
@@ -283,14 +327,12 @@ class SimulatorCore {
     loop.controller = made.get();
     record->controller_columns = made->ReportColumns();
     loop.control_rate = control_rate;
-    loop.inner = setup_->controller.inner;
-    loop.clearance = [this](const Vec3& p) { return world_.Clearance(p); };
-    AddAirAndSensors(*record->setup, &loop);
+    loop.clearance = [this](const Vec3& p) { return obstacles_.Clearance(p); };
     loop.telemetry = [&record](const TelemetrySample& s) { record->samples.push_back(s); };
     Termination termination;
     termination.Into(terminate, trajectory, duration_known, reference, &loop);
     const auto begin = std::chrono::steady_clock::now();
-    record->flight = Checked([&] { return FlyTrajectory(reference, params, loop, &sim_); });
+    record->flight = Checked([&] { return FlyTrajectory(reference, params, loop, world_.get()); });
     // the user's exception (or a command that cannot be flown) raised in Python, as it was
     if (users != nullptr) users->RethrowIfFailed();
     if (termination.error) std::rethrow_exception(termination.error);
@@ -302,7 +344,7 @@ class SimulatorCore {
   }
 
   py::dict VehicleParams() const { return VehicleDict(setup_->vehicle); }
-  double Timestep() const { return sim_.timestep(); }
+  double Timestep() const { return world_->step(); }
   const SetupPtr& setup() const { return setup_; }
 
  private:
@@ -471,13 +513,30 @@ class SimulatorCore {
     return Checked([&] { return Simulation::FromXml(xml_, setup_->name); });
   }
 
+  // The vehicle at `point` (on the floor when the start is at floor level, else hovering
+  // there, its rotors at hover thrust), and the world around it made anew from t = 0.
+  void PlaceAtStart(const Vec3& point) {
+    PlaceVehicleAtStart(setup_->map, setup_->vehicle, setup_->start, point, &sim_);
+    MakeWorld();
+  }
+
+  // The air, the sensors and the inner loops, from the simulation as it is now (run()'s and
+  // step()'s one world), seeded by seed_.
+  void MakeWorld() {
+    FlightSetup seeded = *setup_;
+    seeded.seed = seed_;
+    AddAirAndSensors(seeded, &base_);
+    world_ = Checked([&] { return std::make_unique<VehicleWorld>(base_, &sim_); });
+  }
+
   SetupPtr setup_;
   std::string xml_;  // the scene, made once
   Simulation sim_;
-  CollisionWorld world_;
-  InnerLoops inner_;
-  std::uint64_t seed_ = 1;
-  double t0_ = 0.0;
+  CollisionWorld obstacles_;
+  std::uint64_t seed_;
+  FlightLoop base_;         // the vehicle, its inner loops, the air and the sensors: the world's
+  py::object wind_source_;  // the user's wind object, kept alive for base_.wind_source
+  std::unique_ptr<VehicleWorld> world_;
 };
 
 // A built-in controller answering as a Python one does, with every command level at once: its
@@ -741,6 +800,9 @@ PYBIND11_MODULE(_aerobox, m) {
       .def("contacts", &SimulatorCore::Contacts)
       .def_property_readonly("time", &SimulatorCore::Time)
       .def_property_readonly("state", &SimulatorCore::StateNow)
+      .def_property_readonly("seen", &SimulatorCore::SeenNow)
+      .def_property_readonly("statedot", &SimulatorCore::StateDot)
+      .def("set_wind", &SimulatorCore::SetWindSource, py::arg("wind"))
       .def_property_readonly("vehicle", &SimulatorCore::VehicleParams)
       .def_property_readonly("timestep", &SimulatorCore::Timestep)
       .def_property_readonly("setup", &SimulatorCore::setup);

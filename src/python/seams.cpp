@@ -21,10 +21,6 @@ namespace {
 
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
-std::string At(const std::string& who, double t) {
-  return who + " at t = " + FormatNumber(std::round(t * 1e6) / 1e6) + " s";
-}
-
 py::array_t<double> VectorArray(const double* values, int n) {
   py::array_t<double> array(n);
   double* out = array.mutable_data();
@@ -94,6 +90,10 @@ double Number(py::handle dict_value, const std::string& what) {
 }
 
 }  // namespace
+
+std::string At(const std::string& who, double t) {
+  return who + " at t = " + FormatNumber(std::round(t * 1e6) / 1e6) + " s";
+}
 
 py::array_t<double> Vec3Array(const Vec3& v) { return VectorArray(v.data(), 3); }
 

@@ -147,6 +147,8 @@ py::object LoadClass(const std::string& spec);
 std::vector<Vec3> PointsFromArray(py::handle array, const std::string& what);
 py::object PointsArray(const std::vector<Vec3>& points);
 Vec3 PointFrom(py::handle value, const std::string& what);
+// "who at t = T s", the time rounded to a microsecond: how messages name a call.
+std::string At(const std::string& who, double t);
 py::array_t<double> Vec3Array(const Vec3& v);  // (3,) [m, m/s, ...]
 
 }  // namespace aerobox::python

@@ -279,6 +279,148 @@ class WindAndSensors(unittest.TestCase):
             self.assertIn("aerobox.Simulator: vehicle (vehicle.kind): expected", str(raised.exception))
 
 
+class StepIsRun(unittest.TestCase):
+    """step() is run()'s world a control step at a time: the same wind, drag, sensors,
+    estimator and inner loops with the same seeds, so a loop of step() calls flies run()'s
+    flight to the bit."""
+
+    KEYS = dict(
+        start=[1.0, 0.0, 1.5],
+        wind={"mean": [1.5, 0.0, 0.0], "turbulence": "dryden", "intensity": 0.3,
+              "gusts": [{"start": 0.5, "peak": 1.0, "direction": [0, 1, 0]}]},
+        aero={"drag": True},
+        sensors={"imu": True, "position": {"kind": "mocap", "latency": 0.02}})
+
+    def fly_both(self, sim, seed, rate=250, t_final=1.5):
+        circle = Circle()
+        sim.reset(seed=seed)
+        run = sim.run(SE3Control(sim.quad_params), circle, t_final=t_final, control_rate=rate,
+                      terminate=False)
+        controller = SE3Control(sim.quad_params)
+        state = sim.reset(seed=seed)
+        rows = []
+        for _ in range(len(run["time"])):
+            t = sim.time
+            truth = sim.state
+            rows.append((t, truth["x"], truth["q"], state["x"], state["wind"]))
+            state = sim.step(controller.update(t, state, circle.update(t)), 1 / rate)
+        return run, rows
+
+    def test_a_step_loop_flies_as_run_does_in_wind_with_sensors(self):
+        with tempfile.TemporaryDirectory() as folder:
+            sim = aerobox.Simulator(empty_map(folder), **self.KEYS)
+            run, rows = self.fly_both(sim, seed=3)
+            self.assertEqual(run["status"], "completed")
+            self.assertGreater(len(rows), 300)
+            np.testing.assert_array_equal([r[0] for r in rows], run["time"])
+            np.testing.assert_array_equal([r[1] for r in rows], run["state"]["x"])
+            np.testing.assert_array_equal([r[2] for r in rows], run["state"]["q"])
+            # the controller flew on the estimate, in the wind, both times
+            np.testing.assert_array_equal([r[3] for r in rows], run["estimate"]["x"])
+            np.testing.assert_array_equal([r[4] for r in rows], run["wind"])
+            self.assertGreater(np.abs(run["wind"][:, 1]).max(), 0.5)  # the gust blew
+            self.assertGreater(np.abs(run["estimate"]["x"] - run["state"]["x"]).max(), 0)
+            # another seed is another flight, for step() as for run()
+            other, other_rows = self.fly_both(sim, seed=4)
+            self.assertFalse(np.array_equal(other["wind"], run["wind"]))
+            np.testing.assert_array_equal([r[1] for r in other_rows], other["state"]["x"])
+
+    def test_the_seed_given_to_the_simulator_is_the_run_s(self):
+        with tempfile.TemporaryDirectory() as folder:
+            a = aerobox.Simulator(empty_map(folder), seed=7, **self.KEYS)
+            b = aerobox.Simulator(empty_map(folder), **self.KEYS)
+            b.reset(seed=7)
+            flown = [sim.run(SE3Control(sim.quad_params), Circle(), t_final=1.0, terminate=False)
+                     for sim in (a, b)]
+            self.assertEqual(flown[0]["seed"], 7)
+            np.testing.assert_array_equal(flown[0]["wind"], flown[1]["wind"])
+
+    def test_a_vehicle_reset_in_the_air_hovers(self):
+        # the rotors start at hover thrust, as RotorPy's: held level at hover thrust for 50 ms
+        # it neither drops nor climbs by more than a millimetre
+        with tempfile.TemporaryDirectory() as folder:
+            sim = aerobox.Simulator(empty_map(folder), start=[0.0, 0.0, 1.0])
+            state = sim.reset()
+            hover = sim.quad_params["mass"] * 9.81
+            for _ in range(10):
+                state = sim.step({"cmd_thrust": hover, "cmd_q": [0, 0, 0, 1]}, 0.005)
+            self.assertLess(abs(state["x"][2] - 1.0), 1e-3)
+            self.assertLess(np.linalg.norm(state["v"]), 0.02)
+
+
+class PythonWind(unittest.TestCase):
+    """wind= an object with update(t, position) (RotorPy's wind profiles): asked every physics
+    step with the time and the vehicle's position, it blows through the drag, in run() and in
+    step() alike, and the state carries it."""
+
+    class Ramp:
+        def __init__(self):
+            self.calls = []
+
+        def update(self, t, position):
+            self.calls.append((t, np.array(position)))
+            return np.array([2.0 * min(t, 1.0), 0.0, 0.0])
+
+    def test_a_wind_object_blows(self):
+        with tempfile.TemporaryDirectory() as folder:
+            wind = self.Ramp()
+            sim = aerobox.Simulator(empty_map(folder), start=[1.0, 0.0, 1.5], wind=wind,
+                                    aero={"drag": True})
+            still = aerobox.Simulator(empty_map(folder), start=[1.0, 0.0, 1.5],
+                                      aero={"drag": True})
+            wind.calls.clear()
+            flown = [s.run(SE3Control(s.quad_params), Circle(), t_final=3.0, terminate=False)
+                     for s in (sim, still)]
+            n = len(flown[0]["time"])
+            self.assertEqual(flown[0]["status"], "completed")
+            # the start, then every 1 ms physics step, asked the wind where the vehicle was
+            self.assertGreaterEqual(len(wind.calls), 3000)
+            times = np.array([t for t, _ in wind.calls[1:]])
+            np.testing.assert_allclose(np.diff(times), 0.001, atol=1e-9)
+            np.testing.assert_allclose(wind.calls[-1][1], flown[0]["state"]["x"][-1], atol=0.01)
+            np.testing.assert_allclose(flown[0]["wind"][n // 2:], [[2.0, 0.0, 0.0]] * (n - n // 2))
+            # downwind of the still-air flight (the test's SE3 has no integral term)
+            offset = flown[0]["state"]["x"][n // 2:, 0] - flown[1]["state"]["x"][n // 2:, 0]
+            self.assertGreater(offset.mean(), 0.02)
+            # step() flies in it too, and the state says so
+            state = sim.reset()
+            for _ in range(300):
+                state = sim.step({"cmd_thrust": sim.quad_params["mass"] * 9.81,
+                                  "cmd_q": [0, 0, 0, 1]}, 0.005)
+            np.testing.assert_allclose(state["wind"], [2.0, 0.0, 0.0])
+            self.assertGreater(state["v"][0], 0.05)
+
+    def test_a_bad_wind_names_the_call_and_the_time(self):
+        class Broken:
+            def update(self, t, position):
+                return [1.0, 2.0] if t > 0.5 else [0.0, 0.0, 0.0]
+
+        with tempfile.TemporaryDirectory() as folder:
+            sim = aerobox.Simulator(empty_map(folder), start=[1.0, 0.0, 1.5], wind=Broken(),
+                                    aero={"drag": True})
+            with self.assertRaises(ValueError) as raised:
+                sim.run(SE3Control(sim.quad_params), Circle(), t_final=1.0, terminate=False)
+            self.assertIn("wind.update at t = 0.5 s: the wind has shape (2,)",
+                          str(raised.exception))
+            with self.assertRaises(TypeError) as raised:
+                aerobox.Simulator(empty_map(folder), wind=3.0)
+            self.assertIn("wind: expected a dict of [wind] keys or an object with update(t, "
+                          "position)", str(raised.exception))
+
+    def test_statedot_is_the_last_step_s_acceleration(self):
+        with tempfile.TemporaryDirectory() as folder:
+            sim = aerobox.Simulator(empty_map(folder), start=[0.0, 0.0, 1.0])
+            sim.reset()
+            np.testing.assert_allclose(sim.statedot["vdot"], np.zeros(3), atol=1e-6)
+            before = sim.state["v"]
+            sim.step({"cmd_motor_thrusts": np.zeros(4)}, 0.001, "cmd_motor_thrusts")
+            # the rotors' lag keeps most of the thrust over one step: the acceleration flown
+            # is the velocity's change
+            np.testing.assert_allclose(sim.statedot["vdot"] * 0.001, sim.state["v"] - before,
+                                       atol=1e-9)
+            self.assertEqual(sim.statedot["wdot"].shape, (3,))
+
+
 class BadCommands(unittest.TestCase):
     @classmethod
     def setUpClass(cls):

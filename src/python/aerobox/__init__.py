@@ -194,7 +194,8 @@ def _setup(where, start=None, goal=None, seed=None, caller="aerobox", own=None, 
         if keys is None:
             continue
         if not isinstance(keys, dict):
-            raise TypeError(f"{caller}: {table}: expected a dict of [{table}] keys")
+            also = " or an object with update(t, position)" if table == "wind" else ""
+            raise TypeError(f"{caller}: {table}: expected a dict of [{table}] keys{also}")
         for key, value in keys.items():
             argument = key if table == own else f"{table}[{key!r}]"
             settings.append((f"{table}.{key}", _toml_value(value),
@@ -281,18 +282,27 @@ class Simulator:
         wind={"mean": [3, 0, 0], "turbulence": "dryden", "intensity": 1.0, "gusts": [{...}]},
         aero={"drag": True}, sensors={"imu": True, "position": True} (or a dict of keys for
         either): the scenario's [wind], [aero] and [sensors] (README: Wind, drag and
-        sensors). They act in run(); step() is the still, ideal world.
+        sensors). wind may also be an object with update(t, position) -> wind [m/s] (RotorPy's
+        wind profiles), asked at each 1 ms physics step with the time [s] and the vehicle's
+        position [m] in place of the scenario's wind; like it, it acts through the drag. They act in run() and step() alike: a loop of step() calls, each with the
+        command of a controller given the state step() returned, flies as run() does, to the
+        bit, with the same seed.
 
     Attributes: quad_params (the vehicle as RotorPy's dict; its rotor_pos r1..r4 and
     rotor_directions are in the order cmd_motor_thrusts and cmd_motor_speeds command the rotors:
     RotorPy's for "tello" and "crazyflie", r1 front-left, then clockwise seen from above; a
-    dict's own as it was given), timestep [s], time [s], state (RotorPy's state dict), map
-    (aerobox.Map).
+    dict's own as it was given), timestep [s], time [s], state (the true state as RotorPy's
+    dict: x [m], v [m/s], q [i, j, k, w], w [rad/s], wind [m/s] at the vehicle, rotor_speeds
+    [rad/s]), map (aerobox.Map).
     """
 
     def __init__(self, map, vehicle="tello", start=None, seed=1, **scenario_keys):
         tables = dict(scenario_keys)
         goal = tables.pop("goal", None)
+        wind_object = None
+        if not isinstance(tables.get("wind"), (dict, type(None))) and hasattr(tables["wind"],
+                                                                             "update"):
+            wind_object = tables.pop("wind")
         self.ignored_vehicle_keys = []
         self.adjusted_vehicle_keys = []
         self.added_vehicle_keys = []
@@ -314,6 +324,8 @@ class Simulator:
         else:
             raise TypeError("vehicle: expected 'tello', 'crazyflie' or a quad_params dict")
         self._core = _aerobox.SimulatorCore(setup)
+        if wind_object is not None:
+            self._core.set_wind(wind_object)
         self._seed = seed
         self.map = Map(setup)
 
@@ -338,19 +350,32 @@ class Simulator:
         return self._core.setup.start
 
     def reset(self, seed=None, state=None):
-        """Back to the start at t = 0 (or to `state`, RotorPy's dict: x [m], v [m/s],
-        q [i, j, k, w], w [rad/s], and rotor_speeds [rad/s], else the rotors at hover); `seed` seeds the turbulence and the sensors' noise (the same
-        seed gives the same flight). Returns the state."""
+        """Back to the start at t = 0: at rest on the floor, or hovering level with the rotors at
+        hover speed when the start is in the air (or to `state`, RotorPy's dict: x [m], v [m/s],
+        q [i, j, k, w], w [rad/s], and rotor_speeds [rad/s], else the rotors at hover). `seed`
+        seeds the turbulence and the sensors' noise (the same seed gives the same flight; the
+        default is the Simulator's). The wind, the sensors and the estimator start anew.
+        Returns the state a controller sees, as step() does."""
         if seed is not None:
             self._seed = seed
         self._core.reset(self._seed, state)
-        return self.state
+        return self._core.seen
 
     def step(self, command, dt, command_kind="auto"):
-        """Applies a controller's command dict for dt [s] (a multiple of the 1 ms physics step;
-        the inner loops below the command run every physics step) and returns the new state.
-        command_kind: see run()."""
+        """Applies a controller's command dict for dt [s] (a multiple of the 1 ms physics step)
+        as run() applies it between two control steps: each physics step runs the inner loops
+        below the command on what the vehicle senses, in the wind and drag, then the sensors and
+        the estimator. Returns the state a controller sees, the dict run() gives
+        controller.update: the estimate with sensors on (`state` stays the truth), else the
+        true state, with wind [m/s] and rotor_speeds [rad/s]. Contacts do not stop it (see
+        contacts()). command_kind: see run()."""
         return self._core.step(command, dt, command_kind)
+
+    @property
+    def statedot(self):
+        """The last physics step's accelerations, as RotorPy's vehicle.statedot names them:
+        vdot [m/s^2] (world frame) and wdot [rad/s^2] (body frame)."""
+        return self._core.statedot
 
     def contacts(self):
         """The geoms the vehicle touches now (names; "floor" for the floor)."""
@@ -386,7 +411,9 @@ class Simulator:
         control_rate: [Hz] of controller.update (must divide 1000); None: the scenario's
             [controller] rate, as `aerobox fly` uses it (250 Hz unless the scenario says).
         reset: start from the simulator's start (hovering at the trajectory's first point when
-            the start is in the air); False: from the current state.
+            the start is in the air), the wind and the sensors anew from the seed; False: from
+            the current state, the wind, gusts and estimator going on from where step() or the
+            last run left them (the result's time starts at 0 again).
 
         Returns: time (N,) [s]; state {x, v, q, w} (N, 3|4); control {cmd_motor_thrusts (N, 4)
         [N] as sent to the rotors, cmd_thrust (N,) [N], cmd_moment (N, 3) [N m]}; flat {x, x_dot,
