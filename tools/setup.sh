@@ -35,6 +35,9 @@ packages=(
   slurm-wlm munge
   # tools/plot_telemetry.py (run by tools/fly.sh, tested by tools/test.sh)
   python3-pandas python3-matplotlib
+  # the project environment .venv (below): what RotorPy and Gymnasium need from Debian
+  python3-scipy python3-yaml python3-tqdm python3-cvxopt python3-cloudpickle
+  python3-typing-extensions
 )
 if [ "${1:-}" = "--bench" ]; then
   # OMPL 1.5.2 as the planners' reference; its CMake config links these Boost libraries
@@ -49,15 +52,41 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup: all ${#packages[@]} packages are installed"
-  exit 0
+else
+  sudo=()
+  if [ "$(id -u)" -ne 0 ]; then
+    command -v sudo > /dev/null || { echo "setup: not root and no sudo; install: ${missing[*]}" >&2; exit 1; }
+    sudo=(sudo)
+  fi
+  echo "setup: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo[@]}" apt-get update -q
+  "${sudo[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-sudo=()
-if [ "$(id -u)" -ne 0 ]; then
-  command -v sudo > /dev/null || { echo "setup: not root and no sudo; install: ${missing[*]}" >&2; exit 1; }
-  sudo=(sudo)
+# The project environment .venv: Debian's python3, seeing Debian's numpy, scipy, matplotlib and
+# pandas (--system-site-packages), with the packages our users take from PyPI: every one is
+# pinned in pyproject.toml's "peers" extra and installed --no-deps, so nothing unpinned (PyPI's
+# CUDA torch above all) comes in. The Python tests that fly RotorPy's own objects run in it.
+top=$(cd "$(dirname "$0")/.." && pwd)
+venv=$top/.venv
+pins=$(/usr/bin/python3 -c 'import sys, tomllib
+with open(sys.argv[1], "rb") as file:
+    print(" ".join(tomllib.load(file)["project"]["optional-dependencies"]["peers"]))' \
+  "$top/pyproject.toml")
+if [ "$(cat "$venv/aerobox-pins" 2> /dev/null)" = "$pins" ]; then
+  echo "setup: the project environment .venv has its pinned packages"
+  exit 0
 fi
-echo "setup: installing ${missing[*]}"
-export DEBIAN_FRONTEND=noninteractive
-"${sudo[@]}" apt-get update -q
-"${sudo[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+echo "setup: the project environment .venv: installing $pins"
+[ -x "$venv/bin/python" ] || /usr/bin/python3 -m venv --system-site-packages "$venv"
+# shellcheck disable=SC2086 # one argument per pin
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check --no-deps $pins
+# what the pinned packages need must be there (pip check also reports Debian's own packages'
+# optional needs, which are not ours)
+names=$(for pin in $pins; do printf '%s|' "${pin%%==*}"; done)
+if broken=$("$venv/bin/python" -m pip check --disable-pip-version-check | grep -iE "^(${names%|}) "); then
+  echo "setup: .venv: $broken" >&2
+  exit 1
+fi
+echo "$pins" > "$venv/aerobox-pins"

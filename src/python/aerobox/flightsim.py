@@ -298,16 +298,25 @@ def _trajectory_end_exit(initial_state, trajectory):
     return exit_fn
 
 
-def _safety_exit(state, flat, control):
-    speeds = np.asarray(control["cmd_motor_speeds"], dtype=float)
-    if np.any(np.isinf(speeds)):
-        return ExitStatus.INF_VALUE
-    if np.any(np.isnan(speeds)):
-        return ExitStatus.NAN_VALUE
-    if np.any(np.abs(state["v"]) > 100):
-        return ExitStatus.OVER_SPEED
+def _out_of_control(command, state, max_speed, statuses=ExitStatus):
+    """The first of: an infinite or NaN command, a velocity component above max_speed [m/s], a
+    body rate above 100 rad/s (flightsim's and RotorPy's checks), as a status of `statuses`."""
+    command = np.asarray(command, dtype=float)
+    if np.any(np.isinf(command)):
+        return statuses.INF_VALUE
+    if np.any(np.isnan(command)):
+        return statuses.NAN_VALUE
+    if np.any(np.abs(state["v"]) > max_speed):
+        return statuses.OVER_SPEED
     if np.any(np.abs(state["w"]) > 100):
-        return ExitStatus.OVER_SPIN
+        return statuses.OVER_SPIN
+    return None
+
+
+def _safety_exit(state, flat, control):
+    lost = _out_of_control(control["cmd_motor_speeds"], state, 100)
+    if lost:
+        return lost
     if np.any(np.abs(state["x"] - np.asarray(flat["x"], dtype=float)) > 20):
         return ExitStatus.FLY_AWAY
     return None

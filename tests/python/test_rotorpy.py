@@ -1,0 +1,119 @@
+"""aerobox.rotorpy.Environment: RotorPy scripts with one import changed, flown with RotorPy's own
+classes from PyPI (its Multirotor, SE3Control, trajectories, winds, IMU, mocap, estimator and
+World), and checked against RotorPy's own Environment on the same script."""
+
+import unittest
+import warnings
+
+import numpy as np
+from rotorpy.controllers.quadrotor_control import SE3Control
+from rotorpy.environments import Environment as RotorPyEnvironment
+from rotorpy.simulate import ExitStatus as RotorPyExitStatus
+from rotorpy.trajectories.circular_traj import ThreeDCircularTraj
+from rotorpy.trajectories.hover_traj import HoverTraj
+from rotorpy.vehicles.crazyflie_params import quad_params
+from rotorpy.vehicles.multirotor import Multirotor
+from rotorpy.wind.default_winds import ConstantWind
+from rotorpy.world import World
+
+from aerobox.rotorpy import Environment, ExitStatus
+
+CIRCLE = ThreeDCircularTraj(center=np.array([0, 0, 1.0]), radius=np.array([1, 1, 0]),
+                            freq=np.array([0.2, 0.2, 0]))
+
+
+def at(position, speeds=1788.53):
+    """A Crazyflie state at rest at `position` [m], its rotors at `speeds` [rad/s]."""
+    return {"x": np.array(position, dtype=float), "v": np.zeros(3), "q": np.array([0, 0, 0, 1.0]),
+            "w": np.zeros(3), "wind": np.zeros(3), "rotor_speeds": np.full(4, speeds)}
+
+
+def script(environment, trajectory=CIRCLE, start=None, **keys):
+    """A RotorPy user's script, with the Environment class given."""
+    start = start if start is not None else trajectory.update(0.0)["x"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # aerobox's notes on the Crazyflie's Izz and rotor drag
+        return environment(vehicle=Multirotor(quad_params, initial_state=at(start)),
+                           controller=SE3Control(quad_params), trajectory=trajectory, **keys)
+
+
+class SameScript(unittest.TestCase):
+    def test_the_circle_in_wind_flies_as_in_rotorpy(self):
+        results = [script(e, wind_profile=ConstantWind(2, 0, 0), sim_rate=100).run(t_final=5)
+                   for e in (Environment, RotorPyEnvironment)]
+        ours, theirs = results
+        self.assertEqual(set(ours), set(theirs))
+        for part in ("state", "control", "flat", "imu_measurements", "imu_gt",
+                     "mocap_measurements", "state_estimate"):
+            with self.subTest(part=part):
+                self.assertEqual(set(ours[part]), set(theirs[part]))
+                for key in ours[part]:
+                    self.assertEqual(ours[part][key].shape, theirs[part][key].shape, key)
+        np.testing.assert_array_equal(ours["time"], theirs["time"])
+        self.assertIs(ours["exit"], RotorPyExitStatus.TIMEOUT)
+        self.assertIs(ExitStatus, RotorPyExitStatus)
+        self.assertIsNone(ours["camera_measurements"])
+        # the same flight in another physics: within 1 cm all along (measured 3.3 mm)
+        apart = np.linalg.norm(ours["state"]["x"] - theirs["state"]["x"], axis=1)
+        self.assertLess(apart.max(), 0.01)
+        # the wind blew, and the IMU read the specific force in the body frame
+        np.testing.assert_allclose(ours["state"]["wind"][1:], [[2.0, 0, 0]] * (len(apart) - 1))
+        np.testing.assert_allclose(ours["imu_gt"]["accel"][-1], theirs["imu_gt"]["accel"][-1],
+                                   atol=0.2)
+        self.assertAlmostEqual(float(np.mean(ours["imu_gt"]["accel"][:, 2])), 9.81, delta=0.5)
+
+    def test_terminate_as_rotorpy_means_it(self):
+        hover = HoverTraj(x0=np.array([0, 0, 1.0]))
+        complete = script(Environment, hover).run(t_final=5, terminate=None)
+        self.assertIs(complete["exit"], RotorPyExitStatus.COMPLETE)
+        self.assertAlmostEqual(complete["time"][-1], 1.0, places=9)  # at the end from the start
+        never = script(Environment, hover).run(t_final=2)  # RotorPy's default: False
+        self.assertIs(never["exit"], RotorPyExitStatus.TIMEOUT)
+        self.assertAlmostEqual(never["time"][-1], 2.0, places=6)
+        told = script(Environment).run(
+            t_final=5, terminate=lambda t, s: RotorPyExitStatus.COMPLETE if s["x"][1] > 0.5
+            else None)
+        self.assertIs(told["exit"], RotorPyExitStatus.COMPLETE)
+        self.assertGreater(told["state"]["x"][-1, 1], 0.5)
+        self.assertLess(told["time"][-1], 2.0)
+
+    def test_a_block_of_the_world_is_a_collision(self):
+        world = World({"bounds": {"extents": [-3, 3, -3, 3, 0, 3]},
+                       "blocks": [{"extents": [-0.2, 0.2, 0.6, 1.2, 0, 2], "color": [1, 0, 0]}]})
+        result = script(Environment, world=world, sim_rate=100).run(t_final=5)
+        self.assertIs(result["exit"], RotorPyExitStatus.COLLISION)
+        reached = result["state"]["x"][-1]
+        self.assertGreater(world.path_collisions(reached, 0.25).size, 0)
+
+    def test_the_controller_flies_on_the_mocap_when_asked(self):
+        class Seeing(SE3Control):
+            def __init__(self, params):
+                super().__init__(params)
+                self.seen = []
+
+            def update(self, t, state, flat_output):
+                self.seen.append(np.array(state["x"]))
+                return super().update(t, state, flat_output)
+
+        env = script(Environment)
+        env.controller = Seeing(quad_params)
+        result = env.run(t_final=1, use_mocap=True)
+        np.testing.assert_array_equal(np.array(env.controller.seen),
+                                      result["mocap_measurements"]["x"])
+        self.assertFalse(np.array_equal(result["mocap_measurements"]["x"], result["state"]["x"]))
+
+    def test_what_aerobox_cannot_fly_is_refused(self):
+        with self.assertRaises(ValueError) as raised:
+            script(Environment, sim_rate=300)
+        self.assertIn("sim_rate 300 Hz must divide", str(raised.exception))
+        vehicle = Multirotor(quad_params, control_abstraction="cmd_vel")
+        with self.assertRaises(ValueError) as raised:
+            Environment(vehicle=vehicle, controller=SE3Control(quad_params), trajectory=CIRCLE)
+        self.assertIn("'cmd_vel' has no aerobox inner loop", str(raised.exception))
+        with self.assertRaises(TypeError):
+            Environment(vehicle=quad_params, controller=SE3Control(quad_params),
+                        trajectory=CIRCLE)
+
+
+if __name__ == "__main__":
+    unittest.main()
