@@ -124,6 +124,12 @@ int RunBench(const std::string& sections, const std::string& scenes, const std::
     RunPythonBenchmark(window, out, size);
     out << "\n";
   }
+  if (wanted("rotorpy")) {
+    out << "## RotorPy's Environment against aerobox.rotorpy's on the same scripts\n\n"
+        << std::flush;
+    RunRotorPyBenchmark(out, size);
+    out << "\n";
+  }
   if (wanted("robustness")) {
     RobustnessParams params;
     std::istringstream list(maps);
@@ -196,10 +202,10 @@ int main(int argc, char** argv) {
   std::string bench_maps = "window,maze,forest,over_under";
   int bench_seeds = 20;
   double bench_seconds = 1.0;
-  app.add_option(
-         "--sections", bench_sections,
-         "all, or some of: trajectory,flight,render,speed,python,robustness,replanning,sweep,city,"
-         "planning")
+  app.add_option("--sections", bench_sections,
+                 "all, or some of: "
+                 "trajectory,flight,render,speed,python,rotorpy,robustness,replanning,sweep,"
+                 "city,planning")
       ->capture_default_str();
   app.add_option("--scenes", bench_scenes, "folder with the scenes")->capture_default_str();
   app.add_option("--maps", bench_maps, "comma-separated scene names")->capture_default_str();

@@ -1,5 +1,5 @@
-// aerobox bench --sections python: runs src/bench/python_control.py with Debian's python3 and the
-// build's aerobox package, and copies its table to `out`.
+// aerobox bench --sections python and rotorpy: benchmarks written in Python, run with the build's
+// aerobox package, their tables copied to `out`.
 #pragma once
 
 #include <ostream>
@@ -11,7 +11,13 @@ namespace aerobox {
 
 // Throws std::runtime_error when python3 cannot be started or the script fails.
 // A smoke run flies each controller once, at 100 Hz only.
+// python: src/bench/python_control.py, with Debian's python3.
 void RunPythonBenchmark(const std::string& window_scenario, std::ostream& out,
                         const BenchSize& size);
+
+// rotorpy: src/bench/rotorpy_peer.py, with the project environment's python (.venv, where
+// tools/setup.sh installs RotorPy): RotorPy's Environment against aerobox.rotorpy's on the same
+// scripts. A smoke run flies one script for 1 s.
+void RunRotorPyBenchmark(std::ostream& out, const BenchSize& size);
 
 }  // namespace aerobox
