@@ -178,6 +178,142 @@ py::tuple WithVehicle(const FlightSetup& setup, const py::object& vehicle) {
   return py::make_tuple(copy, ignored, notes.adjusted, notes.added);
 }
 
+// telemetry.csv's columns (TelemetrySchema), one array each: pandas.DataFrame(...) in one
+// call. A clearance with no obstacle in range is NaN here (-1 in the CSV).
+py::dict TelemetryColumns(const FlightRecord& record) {
+  const TelemetrySchema schema(record.controller_columns, TelemetryExtrasFor(*record.setup));
+  const std::vector<std::string>& names = schema.columns();
+  const py::ssize_t n = static_cast<py::ssize_t>(record.samples.size());
+  std::vector<py::array_t<double>> columns;
+  for (size_t c = 0; c < names.size(); ++c) columns.emplace_back(n);
+  for (py::ssize_t i = 0; i < n; ++i) {
+    const Eigen::VectorXd row = schema.Row(record.samples[static_cast<size_t>(i)]);
+    for (size_t c = 0; c < names.size(); ++c) columns[c].mutable_at(i) = row[c];
+  }
+  py::dict table;
+  for (size_t c = 0; c < names.size(); ++c) table[py::str(names[c])] = columns[c];
+  return table;
+}
+
+// run()'s dict (Simulator.run's doc): RotorPy's keys, aerobox's measures, the telemetry.
+py::dict Result(const FlightRecord& record, const std::string& status) {
+  const std::vector<TelemetrySample>& s = record.samples;
+  const py::ssize_t n = static_cast<py::ssize_t>(s.size());
+  const auto matrix = [n](int columns) {
+    return py::array_t<double>({n, static_cast<py::ssize_t>(columns)});
+  };
+  py::array_t<double> time(n), yaw(n), yaw_dot(n), thrust(n), error(n), clearance(n);
+  auto x = matrix(3), v = matrix(3), q = matrix(4), w = matrix(3);
+  auto fx = matrix(3), fv = matrix(3), fa = matrix(3), fj = matrix(3), fs = matrix(3);
+  auto motors = matrix(4), moment = matrix(3), produced = matrix(4);
+  auto wind = matrix(3), drag = matrix(3);
+  const bool sensed = !s.empty() && s.front().estimate.has_value();
+  const py::ssize_t m = sensed ? n : 0;
+  auto ex = py::array_t<double>({m, py::ssize_t{3}}), ev = py::array_t<double>({m, py::ssize_t{3}});
+  auto eq = py::array_t<double>({m, py::ssize_t{4}}), ew = py::array_t<double>({m, py::ssize_t{3}});
+  auto gyro = py::array_t<double>({m, py::ssize_t{3}}),
+       accel = py::array_t<double>({m, py::ssize_t{3}});
+  py::array_t<double> estimate_error(m), nees(m);
+  const auto put = [](py::array_t<double>& a, py::ssize_t i, const double* values, int k) {
+    double* row = a.mutable_data(i, 0);
+    for (int c = 0; c < k; ++c) row[c] = values[c];
+  };
+  for (py::ssize_t i = 0; i < n; ++i) {
+    const TelemetrySample& r = s[static_cast<size_t>(i)];
+    time.mutable_at(i) = r.t;
+    put(x, i, r.state.p_W.data(), 3);
+    put(v, i, r.state.v_W.data(), 3);
+    const double quat[4] = {r.state.q_WB.x(), r.state.q_WB.y(), r.state.q_WB.z(), r.state.q_WB.w()};
+    put(q, i, quat, 4);
+    put(w, i, r.state.w_B.data(), 3);
+    put(fx, i, r.setpoint.p_W.data(), 3);
+    put(fv, i, r.setpoint.v_W.data(), 3);
+    put(fa, i, r.setpoint.a_W.data(), 3);
+    put(fj, i, r.setpoint.j_W.data(), 3);
+    put(fs, i, r.setpoint.s_W.data(), 3);
+    yaw.mutable_at(i) = r.setpoint.yaw;
+    yaw_dot.mutable_at(i) = r.setpoint.yaw_rate;
+    put(motors, i, r.inner.mixer.thrusts.data(), 4);
+    thrust.mutable_at(i) = r.inner.thrust;
+    put(moment, i, r.inner.moment_B.data(), 3);
+    put(produced, i, r.rotor_thrusts.data(), 4);
+    error.mutable_at(i) = r.position_error;
+    clearance.mutable_at(i) = r.clearance;
+    put(wind, i, r.wind_W.data(), 3);
+    put(drag, i, r.aero_force_W.data(), 3);
+    if (sensed && r.estimate) {
+      const State& e = r.estimate->estimate;
+      put(ex, i, e.p_W.data(), 3);
+      put(ev, i, e.v_W.data(), 3);
+      const double eq4[4] = {e.q_WB.x(), e.q_WB.y(), e.q_WB.z(), e.q_WB.w()};
+      put(eq, i, eq4, 4);
+      put(ew, i, e.w_B.data(), 3);
+      put(gyro, i, r.estimate->imu.gyro_B.data(), 3);
+      put(accel, i, r.estimate->imu.accel_B.data(), 3);
+      estimate_error.mutable_at(i) = r.estimate->error.head<3>().norm();
+      nees.mutable_at(i) = r.estimate->nees;
+    }
+  }
+  py::dict state, control, flat, result;
+  state["x"] = x;
+  state["v"] = v;
+  state["q"] = q;
+  state["w"] = w;
+  control["cmd_motor_thrusts"] = motors;
+  control["cmd_thrust"] = thrust;
+  control["cmd_moment"] = moment;
+  flat["x"] = fx;
+  flat["x_dot"] = fv;
+  flat["x_ddot"] = fa;
+  flat["x_dddot"] = fj;
+  flat["x_ddddot"] = fs;
+  flat["yaw"] = yaw;
+  flat["yaw_dot"] = yaw_dot;
+  const FlightResult& f = record.flight;
+  result["time"] = time;
+  result["state"] = state;
+  result["control"] = control;
+  result["flat"] = flat;
+  result["rotor_thrusts"] = produced;
+  result["position_error"] = error;
+  result["clearance"] = clearance;
+  result["status"] = status;
+  result["reached_goal"] = f.status == FlightStatus::kReachedGoal;
+  result["collisions"] = f.status == FlightStatus::kCollision ? 1 : 0;
+  result["collision_with"] = f.obstacle;
+  result["min_clearance"] = f.min_clearance;
+  result["tracking_rms"] = f.rms_error;
+  result["tracking_max"] = f.max_error;
+  result["flight_time"] = f.time;
+  result["distance"] = f.distance;
+  result["top_speed"] = f.top_speed;
+  result["peak_rotor_fraction"] = f.peak_rotor_fraction;
+  result["rotor_saturated_time"] = f.saturated_time;
+  result["control_rate"] = f.control_rate;
+  result["wall_time"] = record.wall_time;
+  result["seed"] = static_cast<long long>(record.setup->seed);
+  result["wind"] = wind;
+  result["drag"] = drag;
+  result["max_wind"] = f.max_wind;
+  if (sensed) {
+    py::dict estimate, imu;
+    estimate["x"] = ex;
+    estimate["v"] = ev;
+    estimate["q"] = eq;
+    estimate["w"] = ew;
+    imu["gyro"] = gyro;
+    imu["accel"] = accel;
+    result["estimate"] = estimate;
+    result["imu"] = imu;
+    result["estimate_error"] = estimate_error;
+    result["nees"] = nees;
+    result["estimate_rms"] = f.estimate_rms_error;
+    result["estimate_max"] = f.estimate_max_error;
+  }
+  result["telemetry"] = TelemetryColumns(record);
+  return result;
+}
+
 class SimulatorCore {
  public:
   explicit SimulatorCore(SetupPtr setup)
@@ -370,144 +506,6 @@ class SimulatorCore {
     return ToString(flight.status);
   }
 
-  py::dict Result(const FlightRecord& record, const std::string& status) const {
-    const std::vector<TelemetrySample>& s = record.samples;
-    const py::ssize_t n = static_cast<py::ssize_t>(s.size());
-    const auto matrix = [n](int columns) {
-      return py::array_t<double>({n, static_cast<py::ssize_t>(columns)});
-    };
-    py::array_t<double> time(n), yaw(n), yaw_dot(n), thrust(n), error(n), clearance(n);
-    auto x = matrix(3), v = matrix(3), q = matrix(4), w = matrix(3);
-    auto fx = matrix(3), fv = matrix(3), fa = matrix(3), fj = matrix(3), fs = matrix(3);
-    auto motors = matrix(4), moment = matrix(3), produced = matrix(4);
-    auto wind = matrix(3), drag = matrix(3);
-    const bool sensed = !s.empty() && s.front().estimate.has_value();
-    const py::ssize_t m = sensed ? n : 0;
-    auto ex = py::array_t<double>({m, py::ssize_t{3}}),
-         ev = py::array_t<double>({m, py::ssize_t{3}});
-    auto eq = py::array_t<double>({m, py::ssize_t{4}}),
-         ew = py::array_t<double>({m, py::ssize_t{3}});
-    auto gyro = py::array_t<double>({m, py::ssize_t{3}}),
-         accel = py::array_t<double>({m, py::ssize_t{3}});
-    py::array_t<double> estimate_error(m), nees(m);
-    const auto put = [](py::array_t<double>& a, py::ssize_t i, const double* values, int k) {
-      double* row = a.mutable_data(i, 0);
-      for (int c = 0; c < k; ++c) row[c] = values[c];
-    };
-    for (py::ssize_t i = 0; i < n; ++i) {
-      const TelemetrySample& r = s[static_cast<size_t>(i)];
-      time.mutable_at(i) = r.t;
-      put(x, i, r.state.p_W.data(), 3);
-      put(v, i, r.state.v_W.data(), 3);
-      const double quat[4] = {r.state.q_WB.x(), r.state.q_WB.y(), r.state.q_WB.z(),
-                              r.state.q_WB.w()};
-      put(q, i, quat, 4);
-      put(w, i, r.state.w_B.data(), 3);
-      put(fx, i, r.setpoint.p_W.data(), 3);
-      put(fv, i, r.setpoint.v_W.data(), 3);
-      put(fa, i, r.setpoint.a_W.data(), 3);
-      put(fj, i, r.setpoint.j_W.data(), 3);
-      put(fs, i, r.setpoint.s_W.data(), 3);
-      yaw.mutable_at(i) = r.setpoint.yaw;
-      yaw_dot.mutable_at(i) = r.setpoint.yaw_rate;
-      put(motors, i, r.inner.mixer.thrusts.data(), 4);
-      thrust.mutable_at(i) = r.inner.thrust;
-      put(moment, i, r.inner.moment_B.data(), 3);
-      put(produced, i, r.rotor_thrusts.data(), 4);
-      error.mutable_at(i) = r.position_error;
-      clearance.mutable_at(i) = r.clearance;
-      put(wind, i, r.wind_W.data(), 3);
-      put(drag, i, r.aero_force_W.data(), 3);
-      if (sensed && r.estimate) {
-        const State& e = r.estimate->estimate;
-        put(ex, i, e.p_W.data(), 3);
-        put(ev, i, e.v_W.data(), 3);
-        const double eq4[4] = {e.q_WB.x(), e.q_WB.y(), e.q_WB.z(), e.q_WB.w()};
-        put(eq, i, eq4, 4);
-        put(ew, i, e.w_B.data(), 3);
-        put(gyro, i, r.estimate->imu.gyro_B.data(), 3);
-        put(accel, i, r.estimate->imu.accel_B.data(), 3);
-        estimate_error.mutable_at(i) = r.estimate->error.head<3>().norm();
-        nees.mutable_at(i) = r.estimate->nees;
-      }
-    }
-    py::dict state, control, flat, result;
-    state["x"] = x;
-    state["v"] = v;
-    state["q"] = q;
-    state["w"] = w;
-    control["cmd_motor_thrusts"] = motors;
-    control["cmd_thrust"] = thrust;
-    control["cmd_moment"] = moment;
-    flat["x"] = fx;
-    flat["x_dot"] = fv;
-    flat["x_ddot"] = fa;
-    flat["x_dddot"] = fj;
-    flat["x_ddddot"] = fs;
-    flat["yaw"] = yaw;
-    flat["yaw_dot"] = yaw_dot;
-    const FlightResult& f = record.flight;
-    result["time"] = time;
-    result["state"] = state;
-    result["control"] = control;
-    result["flat"] = flat;
-    result["rotor_thrusts"] = produced;
-    result["position_error"] = error;
-    result["clearance"] = clearance;
-    result["status"] = status;
-    result["reached_goal"] = f.status == FlightStatus::kReachedGoal;
-    result["collisions"] = f.status == FlightStatus::kCollision ? 1 : 0;
-    result["collision_with"] = f.obstacle;
-    result["min_clearance"] = f.min_clearance;
-    result["tracking_rms"] = f.rms_error;
-    result["tracking_max"] = f.max_error;
-    result["flight_time"] = f.time;
-    result["distance"] = f.distance;
-    result["top_speed"] = f.top_speed;
-    result["peak_rotor_fraction"] = f.peak_rotor_fraction;
-    result["rotor_saturated_time"] = f.saturated_time;
-    result["control_rate"] = f.control_rate;
-    result["wall_time"] = record.wall_time;
-    result["seed"] = static_cast<long long>(seed_);
-    result["wind"] = wind;
-    result["drag"] = drag;
-    result["max_wind"] = f.max_wind;
-    if (sensed) {
-      py::dict estimate, imu;
-      estimate["x"] = ex;
-      estimate["v"] = ev;
-      estimate["q"] = eq;
-      estimate["w"] = ew;
-      imu["gyro"] = gyro;
-      imu["accel"] = accel;
-      result["estimate"] = estimate;
-      result["imu"] = imu;
-      result["estimate_error"] = estimate_error;
-      result["nees"] = nees;
-      result["estimate_rms"] = f.estimate_rms_error;
-      result["estimate_max"] = f.estimate_max_error;
-    }
-    result["telemetry"] = TelemetryColumns(record);
-    return result;
-  }
-
-  // telemetry.csv's columns (TelemetrySchema), one array each: pandas.DataFrame(...) in one
-  // call. A clearance with no obstacle in range is NaN here (-1 in the CSV).
-  static py::dict TelemetryColumns(const FlightRecord& record) {
-    const TelemetrySchema schema(record.controller_columns, TelemetryExtrasFor(*record.setup));
-    const std::vector<std::string>& names = schema.columns();
-    const py::ssize_t n = static_cast<py::ssize_t>(record.samples.size());
-    std::vector<py::array_t<double>> columns;
-    for (size_t c = 0; c < names.size(); ++c) columns.emplace_back(n);
-    for (py::ssize_t i = 0; i < n; ++i) {
-      const Eigen::VectorXd row = schema.Row(record.samples[static_cast<size_t>(i)]);
-      for (size_t c = 0; c < names.size(); ++c) columns[c].mutable_at(i) = row[c];
-    }
-    py::dict table;
-    for (size_t c = 0; c < names.size(); ++c) table[py::str(names[c])] = columns[c];
-    return table;
-  }
-
   // a fresh simulation of the scene, at rest at the start
   Simulation Load() const {
     return Checked([&] { return Simulation::FromXml(xml_, setup_->name); });
@@ -538,6 +536,84 @@ class SimulatorCore {
   py::object wind_source_;  // the user's wind object, kept alive for base_.wind_source
   std::unique_ptr<VehicleWorld> world_;
 };
+
+// What a whole run hands the Python result: the plan, the controller's own columns, every
+// control step.
+class Recorder : public MissionObserver {
+ public:
+  explicit Recorder(FlightRecord* record) : record_(record) {}
+  void OnPlan(const PlanOutcome& plan) override { record_->plan = plan; }
+  void OnFlightStart(const Simulation&, const Controller& controller) override {
+    record_->controller_columns = controller.ReportColumns();
+  }
+  void OnSample(const TelemetrySample& sample) override { record_->samples.push_back(sample); }
+
+ private:
+  FlightRecord* record_;
+};
+
+py::dict ReplanDict(const ReplanEvent& event) {
+  py::dict dict;
+  dict["t"] = event.t;
+  dict["trigger"] = event.trigger;
+  dict["outcome"] = event.outcome;
+  dict["planning_time"] = event.planning_time;
+  dict["solve_time"] = event.solve_time;
+  dict["latency"] = event.latency;
+  dict["path_length"] = event.path_length;
+  dict["time_capped"] = event.time_capped;
+  return dict;
+}
+
+// The mission's own keys of aerobox.fly's result: its status, the path, the goals' times, the
+// unknown boxes and the replans.
+void AddMission(const MissionResult& mission, py::dict* result) {
+  py::dict& r = *result;
+  r["mission_status"] = ToString(mission.status);
+  const std::vector<Vec3>& path = mission.plan.result.path;
+  py::array_t<double> waypoints({static_cast<py::ssize_t>(path.size()), py::ssize_t{3}});
+  for (size_t i = 0; i < path.size(); ++i) {
+    for (int k = 0; k < 3; ++k) waypoints.mutable_at(static_cast<py::ssize_t>(i), k) = path[i][k];
+  }
+  r["path"] = waypoints;
+  r["goal_times"] = mission.flight.goal_times;
+  r["unknown_boxes"] = mission.unknown_boxes;
+  r["revealed_boxes"] = mission.revealed_boxes;
+  r["revealed_at"] = mission.revealed_at;
+  py::list replans;
+  for (const ReplanEvent& event : mission.replans) replans.append(ReplanDict(event));
+  r["replans"] = replans;
+}
+
+// aerobox.fly: a whole run as `aerobox fly` flies it (plan, trajectory, scene, flight, with a
+// mission's goals, unknown boxes, sensing and replanning), with the set-up's controller or the
+// user's object.
+py::tuple Fly(const SetupPtr& given, const py::object& controller, const std::string& choice) {
+  auto record = std::make_shared<FlightRecord>();
+  auto setup = std::make_shared<FlightSetup>(*given);
+  record->setup = setup;
+  std::unique_ptr<PythonController> user;
+  MissionParts parts;
+  if (!controller.is_none()) {
+    user =
+        std::make_unique<PythonController>(controller, setup->vehicle, ParseCommandChoice(choice));
+    parts.controller = user.get();
+    setup->controller.kind =
+        "python:" + std::string(py::str(py::type::handle_of(controller).attr("__name__")));
+  }
+  Recorder recorder(record.get());
+  parts.observers = {&recorder};
+  const auto begin = std::chrono::steady_clock::now();
+  const MissionResult mission = Checked([&] { return RunMission(*given, parts); });
+  if (user) user->RethrowIfFailed();
+  record->wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  record->flight = mission.flight;
+  py::dict result =
+      Result(*record, mission.flown ? ToString(mission.flight.status) : ToString(mission.status));
+  AddMission(mission, &result);
+  return py::make_tuple(result, record);
+}
 
 // A built-in controller answering as a Python one does, with every command level at once: its
 // own command and what aerobox's inner loops (its own copy, stepped once per call) make of it
@@ -816,6 +892,7 @@ PYBIND11_MODULE(_aerobox, m) {
   m.def("_write_outputs", &WriteOutputs, py::arg("record"), py::arg("out_dir"), py::arg("video"),
         py::arg("width"), py::arg("height"), py::arg("fps"), py::arg("camera"), py::arg("report"));
   m.def("_load_class", &LoadClass);
+  m.def("_fly", &Fly, py::arg("setup"), py::arg("controller"), py::arg("command_kind"));
 }
 
 }  // namespace aerobox::python

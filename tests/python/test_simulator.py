@@ -421,6 +421,66 @@ class PythonWind(unittest.TestCase):
             self.assertEqual(sim.statedot["wdot"].shape, (3,))
 
 
+class WholeRun(unittest.TestCase):
+    """aerobox.fly is `aerobox fly` from Python: a mission through several goals, and unknown
+    boxes found by the sensor with replanning, fly as the command flies them."""
+
+    AEROBOX = os.environ.get("AEROBOX_BIN", os.path.join(SOURCE, "build", "aerobox"))
+
+    def command(self, scenario, folder):
+        import json
+        import subprocess
+
+        subprocess.run([self.AEROBOX, "fly", scenario, "--out", folder, "--no-video", "--quiet"],
+                       check=True, capture_output=True)
+        with open(os.path.join(folder, "summary.json")) as file:
+            summary = json.load(file)
+        path = np.loadtxt(os.path.join(folder, "path.csv"), delimiter=",", skiprows=1)
+        return summary, path
+
+    def test_unknown_boxes_and_replanning_as_the_command(self):
+        scenario = os.path.join(SOURCE, "scenes", "maze_unknown", "scenario.toml")
+        result = aerobox.fly(scenario)
+        with tempfile.TemporaryDirectory() as folder:
+            summary, path = self.command(scenario, folder)
+        self.assertEqual(result["status"], "reached goal")
+        self.assertEqual(result["mission_status"], "reached goal")
+        self.assertEqual((result["unknown_boxes"], result["revealed_boxes"]),
+                         (summary["unknown_boxes"], summary["revealed_boxes"]))
+        self.assertGreaterEqual(len(result["replans"]), 1)
+        self.assertEqual([(r["t"], r["trigger"], r["outcome"]) for r in result["replans"]],
+                         [(r["t_s"], r["trigger"], r["outcome"]) for r in summary["replans"]])
+        np.testing.assert_array_equal(result["path"], path)
+        self.assertEqual(result["tracking_rms"], summary["tracking_rms_m"])
+        self.assertEqual(len(result["revealed_at"]), len(aerobox.read_map(
+            os.path.join(SOURCE, "scenes", "maze", "map.json")).boxes))
+
+    def test_a_mission_from_keywords_with_a_python_controller(self):
+        scenario = os.path.join(SOURCE, "scenes", "maze", "scenario.toml")
+        goals = [[1.5, 3.0, 1.5], [5.0, 4.0, 1.5], [9.0, 7.0, 1.5]]
+        sim = aerobox.Simulator(scenario)
+        result = aerobox.fly(scenario, controller=SE3Control(sim.quad_params), goals=goals)
+        self.assertEqual(result["status"], "reached goal")
+        self.assertEqual(len(result["goal_times"]), 2)
+        self.assertLess(result["goal_times"][0], result["goal_times"][1])
+        for goal, t in zip(goals, result["goal_times"]):
+            i = int(np.searchsorted(result["time"], t))
+            self.assertLess(np.linalg.norm(result["state"]["x"][i] - goal), 0.15)
+        with tempfile.TemporaryDirectory() as folder:
+            out = aerobox.write_outputs(result, os.path.join(folder, "mission"), video=False)
+            self.assertTrue(os.path.exists(os.path.join(out, "telemetry.csv")))
+
+    def test_no_path_is_a_status_and_bad_keys_are_named(self):
+        result = aerobox.fly(os.path.join(SOURCE, "scenes", "impossible", "scenario.toml"),
+                             planner={"time_budget": 0.2})
+        self.assertEqual(result["mission_status"], "no path")
+        self.assertEqual(result["status"], "no path")
+        self.assertEqual(len(result["time"]), 0)
+        with self.assertRaises(ValueError) as raised:
+            aerobox.fly(WINDOW, unknown_fraction=2.0)
+        self.assertIn("unknown_fraction", str(raised.exception))
+
+
 class BadCommands(unittest.TestCase):
     @classmethod
     def setUpClass(cls):

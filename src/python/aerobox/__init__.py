@@ -11,6 +11,7 @@ frame. Arrays are numpy float64.
     sim = aerobox.Simulator(world, vehicle="tello", start=path[0])
     result = sim.run(MyController(sim.quad_params), trajectory)  # RotorPy's result dict
     aerobox.write_outputs(result, "renders/mine")                # what `aerobox fly` writes
+    result = aerobox.fly("scenes/maze_unknown/scenario.toml")    # a whole run, as the command
 
 Scenario keys: every function that takes **keys takes the tables of a scenario.toml (README:
 Scenarios): ``planner={...}``, ``trajectory={...}``, ``controller={...}``, ``flight={...}``,
@@ -30,6 +31,7 @@ __all__ = [
     "Simulator",
     "Trajectory",
     "builtin_controller",
+    "fly",
     "load_scenario",
     "min_snap",
     "plan",
@@ -440,6 +442,35 @@ class Simulator:
         result["vehicle_notes"] = list(self.vehicle_notes)
         result["_record"] = record
         return result
+
+
+def fly(map, controller=None, start=None, goal=None, goals=None, unknown_fraction=None,
+        seed=None, command="auto", **scenario_keys):
+    """Flies a map or scenario as `aerobox fly` does: plans (RRT*, or the scenario's planner),
+    solves the trajectory, flies it with the scenario's controller (or `controller`, any object
+    with update(t, state, flat_output) -> dict, flown as in Simulator.run with `command`), and
+    returns Simulator.run's dict (aerobox.write_outputs writes its files) with, besides:
+    mission_status ("reached goal", "no path", "no feasible trajectory", "flight failed"),
+    path (N, 3) [m] as planned, goal_times [s] (a mission's goals before the last, when each was
+    reached), unknown_boxes and revealed_boxes (how many of the map's boxes the planner did
+    not know, and how many the sensor revealed), revealed_at [s] per box (< 0: never, or known)
+    and replans (a dict each: t [s], trigger (the box), outcome, planning_time, solve_time,
+    latency [s], path_length [m], time_capped). A flight that could not start (no path, no
+    trajectory) has status mission_status and empty arrays.
+
+    start, goal [m]; goals: a mission's goals in order ([[x, y, z], ...], the last the goal);
+    unknown_fraction: the share of the map's boxes the planner does not know before take-off
+    (0..1, chosen by the seed); seed; scenario_keys: tables as Simulator's (planner,
+    trajectory, controller, flight, wind, aero, sensors, sensing, replan, vehicle, ...), each
+    checked as `--set` checks it."""
+    extra = []
+    for key, value in (("goals", goals), ("unknown_fraction", unknown_fraction)):
+        if value is not None:
+            extra.append((key, _toml_value(value), key))
+    setup = _setup(map, start, goal, seed, "aerobox.fly", extra=extra, **scenario_keys)
+    result, record = _aerobox._fly(setup, controller, command)
+    result["_record"] = record
+    return result
 
 
 def write_outputs(result, out_dir, video=True, size=(640, 480), fps=30, camera="chase",
