@@ -589,13 +589,21 @@ PythonController::PythonController(py::object controller, const QuadParams& vehi
 std::string DescribeError(const py::error_already_set& error) {
   std::string text = py::str(error.type().attr("__name__")).cast<std::string>() + ": " +
                      py::str(error.value()).cast<std::string>();
-  py::object frame = py::reinterpret_borrow<py::object>(error.trace());
-  if (frame.is_none() || !frame) return text;
-  while (!frame.attr("tb_next").is_none()) frame = frame.attr("tb_next");
-  const py::object code = frame.attr("tb_frame").attr("f_code");
+  // a syntax error names the user's file and line itself; its traceback ends in the importer
+  if (error.matches(PyExc_SyntaxError)) return text;
+  // where it was raised: the innermost frame of the user's code (not the interpreter's own
+  // frozen modules)
+  py::object at;
+  for (py::object frame = py::reinterpret_borrow<py::object>(error.trace());
+       frame && !frame.is_none(); frame = frame.attr("tb_next")) {
+    const std::string file = py::str(frame.attr("tb_frame").attr("f_code").attr("co_filename"));
+    if (file.rfind("<frozen ", 0) != 0) at = frame;
+  }
+  if (!at) return text;
+  const py::object code = at.attr("tb_frame").attr("f_code");
   const std::string file = py::str(code.attr("co_filename"));
   return text + " (" + file.substr(file.rfind('/') + 1) + " line " +
-         std::to_string(frame.attr("tb_lineno").cast<int>()) + ", in " +
+         std::to_string(at.attr("tb_lineno").cast<int>()) + ", in " +
          py::str(code.attr("co_name")).cast<std::string>() + ")";
 }
 

@@ -101,6 +101,10 @@ class PythonInTheCommand(unittest.TestCase):
         broken = os.path.join(self.folder.name, "broken.py")
         with open(broken, "w") as file:
             file.write("def update(:\n")
+        # a syntax error names the user's file and line, not the importer's frames
+        run = fly("--controller", broken + ":Controller", out=self.out)
+        self.assertIn("SyntaxError: invalid syntax (broken.py, line 1)", run.stderr)
+        self.assertNotIn("frozen", run.stderr)
         for spec, words in ((broken + ":Controller", "SyntaxError"),
                             (PARTS + ":NoSuchClass", "has no class 'NoSuchClass'"),
                             (os.path.join(self.folder.name, "absent.py") + ":C", "no such"),
