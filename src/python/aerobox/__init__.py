@@ -196,7 +196,8 @@ def _setup(where, start=None, goal=None, seed=None, caller="aerobox", own=None, 
         if keys is None:
             continue
         if not isinstance(keys, dict):
-            also = " or an object with update(t, position)" if table == "wind" else ""
+            simulator = caller == "aerobox.Simulator"  # the one that takes a wind object
+            also = " or an object with update(t, position)" if table == "wind" and simulator else ""
             raise TypeError(f"{caller}: {table}: expected a dict of [{table}] keys{also}")
         for key, value in keys.items():
             argument = key if table == own else f"{table}[{key!r}]"
