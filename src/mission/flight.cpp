@@ -296,8 +296,7 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
 
 FlightResult FlyTrajectory(const Reference& reference, const FlightParams& params,
                            const FlightLoop& loop, Simulation* sim) {
-  CheckFlight(params, loop);
-  VehicleWorld world(loop, sim);
+  VehicleWorld world(loop, sim);  // checks the vehicle, the wind and the sensors
   return FlyTrajectory(reference, params, loop, &world);
 }
 

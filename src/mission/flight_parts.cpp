@@ -5,7 +5,6 @@
 #include <limits>
 #include <stdexcept>
 #include <tuple>
-#include <utility>
 
 #include "common/seed.h"
 
@@ -69,18 +68,18 @@ FlatOutput Setpoints::At(double tr) {
   return setpoint;
 }
 
-Air::Air(const WindParams& wind, const AeroParams& aero, const QuadParams& vehicle,
-         std::uint64_t seed, double ground_z, std::function<Vec3(double t, const Vec3& p_W)> source)
-    : source_(std::move(source)), aero_(aero), vehicle_(&vehicle), ground_z_(ground_z) {
-  if (wind.Enabled() && !source_) {
-    field_.emplace(wind, StreamSeed(seed, SeedStream::kTurbulence));
+Air::Air(const FlightLoop& loop, const Vec3& p_W)
+    : source_(loop.wind_source),
+      aero_(loop.aero),
+      vehicle_(loop.vehicle),
+      ground_z_(loop.ground_z) {
+  if (source_) {
+    wind_W_ = source_(0.0, p_W);
+  } else if (loop.wind.Enabled()) {
+    field_.emplace(loop.wind, StreamSeed(loop.seed, SeedStream::kTurbulence));
+    wind_W_ = field_->current();
   }
-  enabled_ = field_.has_value() || source_ || aero.Enabled();
-  if (field_) wind_W_ = field_->current();
-}
-
-void Air::Begin(const State& state) {
-  if (source_) wind_W_ = source_(0.0, state.p_W);
+  enabled_ = field_.has_value() || source_ || aero_.Enabled();
 }
 
 void Air::BeforeStep(double t, double step, const State& state, Simulation* sim) {
@@ -88,7 +87,6 @@ void Air::BeforeStep(double t, double step, const State& state, Simulation* sim)
   // the wind where the vehicle is, and the drag it causes, held over the step
   if (source_) {
     wind_W_ = source_(t, state.p_W);
-    if (!wind_W_.allFinite()) throw std::invalid_argument("the wind is not finite");
   } else if (field_) {
     wind_W_ = field_->Step(t, step, state.p_W.z() - ground_z_, state.v_W);
   }
@@ -117,8 +115,7 @@ VehicleWorld::VehicleWorld(const FlightLoop& loop, Simulation* sim)
       step_(CheckedStep(loop, *sim)),
       t0_(sim->time()),
       inner_(loop.inner, *loop.vehicle),
-      air_(loop.wind, loop.aero, *loop.vehicle, loop.seed, loop.ground_z, loop.wind_source) {
-  air_.Begin(Truth());
+      air_(loop, Truth().p_W) {
   if (loop.sensors.Enabled()) sensing_.emplace(loop.sensors, loop.seed, step_, 0.0, Truth());
 }
 

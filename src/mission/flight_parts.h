@@ -67,13 +67,11 @@ class Setpoints {
 // nothing and the flight is the still-air one, step for step.
 class Air {
  public:
-  // `source`, when set, replaces `wind` (FlightLoop::wind_source).
-  Air(const WindParams& wind, const AeroParams& aero, const QuadParams& vehicle, std::uint64_t seed,
-      double ground_z, std::function<Vec3(double t, const Vec3& p_W)> source = {});
+  // The air of `loop` (its wind, or its wind_source in place of it, its drag, vehicle, seed
+  // and floor) around a vehicle starting at `p_W` [m].
+  Air(const FlightLoop& loop, const Vec3& p_W);
 
   bool enabled() const { return enabled_; }
-  // The wind at the vehicle in `state` where the flight starts (a wind source's at t = 0).
-  void Begin(const State& state);
   // Before the physics step from `state` at flight time `t` [s] of `step` [s].
   void BeforeStep(double t, double step, const State& state, Simulation* sim);
   // Takes the wrench off the simulation (at the flight's end).

@@ -195,88 +195,89 @@ py::dict TelemetryColumns(const FlightRecord& record) {
   return table;
 }
 
+// One array of run()'s result per row: where it goes (a sub-dict, or the top level for ""),
+// its key, its width (0: one number a sample) and what it takes from a sample.
+struct ResultColumn {
+  const char* group;
+  const char* key;
+  int width;
+  void (*fill)(const TelemetrySample&, double*);
+};
+
+void Put(const Vec3& v, double* out) { std::copy(v.data(), v.data() + 3, out); }
+void Put(const Vec4& v, double* out) { std::copy(v.data(), v.data() + 4, out); }
+void Put(const Quat& q, double* out) {  // RotorPy's [i, j, k, w]
+  const double ijkw[4] = {q.x(), q.y(), q.z(), q.w()};
+  std::copy(ijkw, ijkw + 4, out);
+}
+
+using Sample = TelemetrySample;
+const ResultColumn kFlightColumns[] = {
+    {"", "time", 0, [](const Sample& r, double* o) { *o = r.t; }},
+    {"state", "x", 3, [](const Sample& r, double* o) { Put(r.state.p_W, o); }},
+    {"state", "v", 3, [](const Sample& r, double* o) { Put(r.state.v_W, o); }},
+    {"state", "q", 4, [](const Sample& r, double* o) { Put(r.state.q_WB, o); }},
+    {"state", "w", 3, [](const Sample& r, double* o) { Put(r.state.w_B, o); }},
+    {"control", "cmd_motor_thrusts", 4,
+     [](const Sample& r, double* o) { Put(r.inner.mixer.thrusts, o); }},
+    {"control", "cmd_thrust", 0, [](const Sample& r, double* o) { *o = r.inner.thrust; }},
+    {"control", "cmd_moment", 3, [](const Sample& r, double* o) { Put(r.inner.moment_B, o); }},
+    {"flat", "x", 3, [](const Sample& r, double* o) { Put(r.setpoint.p_W, o); }},
+    {"flat", "x_dot", 3, [](const Sample& r, double* o) { Put(r.setpoint.v_W, o); }},
+    {"flat", "x_ddot", 3, [](const Sample& r, double* o) { Put(r.setpoint.a_W, o); }},
+    {"flat", "x_dddot", 3, [](const Sample& r, double* o) { Put(r.setpoint.j_W, o); }},
+    {"flat", "x_ddddot", 3, [](const Sample& r, double* o) { Put(r.setpoint.s_W, o); }},
+    {"flat", "yaw", 0, [](const Sample& r, double* o) { *o = r.setpoint.yaw; }},
+    {"flat", "yaw_dot", 0, [](const Sample& r, double* o) { *o = r.setpoint.yaw_rate; }},
+    {"", "rotor_thrusts", 4, [](const Sample& r, double* o) { Put(r.rotor_thrusts, o); }},
+    {"", "position_error", 0, [](const Sample& r, double* o) { *o = r.position_error; }},
+    {"", "clearance", 0, [](const Sample& r, double* o) { *o = r.clearance; }},
+    {"", "wind", 3, [](const Sample& r, double* o) { Put(r.wind_W, o); }},
+    {"", "drag", 3, [](const Sample& r, double* o) { Put(r.aero_force_W, o); }},
+};
+// with sensors on, when every sample carries the estimate
+const ResultColumn kEstimateColumns[] = {
+    {"estimate", "x", 3, [](const Sample& r, double* o) { Put(r.estimate->estimate.p_W, o); }},
+    {"estimate", "v", 3, [](const Sample& r, double* o) { Put(r.estimate->estimate.v_W, o); }},
+    {"estimate", "q", 4, [](const Sample& r, double* o) { Put(r.estimate->estimate.q_WB, o); }},
+    {"estimate", "w", 3, [](const Sample& r, double* o) { Put(r.estimate->estimate.w_B, o); }},
+    {"imu", "gyro", 3, [](const Sample& r, double* o) { Put(r.estimate->imu.gyro_B, o); }},
+    {"imu", "accel", 3, [](const Sample& r, double* o) { Put(r.estimate->imu.accel_B, o); }},
+    {"", "estimate_error", 0,
+     [](const Sample& r, double* o) { *o = r.estimate->error.head<3>().norm(); }},
+    {"", "nees", 0, [](const Sample& r, double* o) { *o = r.estimate->nees; }},
+};
+
+// The columns' arrays, one row a sample, into `result` (and its sub-dicts).
+template <size_t N>
+void AddColumns(const std::vector<TelemetrySample>& samples, const ResultColumn (&columns)[N],
+                py::dict* result) {
+  const py::ssize_t n = static_cast<py::ssize_t>(samples.size());
+  for (const ResultColumn& column : columns) {
+    py::array_t<double> array = column.width == 0
+                                    ? py::array_t<double>(n)
+                                    : py::array_t<double>({n, py::ssize_t{column.width}});
+    double* out = array.mutable_data();
+    const int stride = std::max(1, column.width);
+    for (const TelemetrySample& sample : samples) {
+      column.fill(sample, out);
+      out += stride;
+    }
+    if (*column.group == '\0') {
+      (*result)[column.key] = array;
+      continue;
+    }
+    if (!result->contains(column.group)) (*result)[column.group] = py::dict();
+    (*result)[column.group].cast<py::dict>()[column.key] = array;
+  }
+}
+
 // run()'s dict (Simulator.run's doc): RotorPy's keys, aerobox's measures, the telemetry.
 py::dict Result(const FlightRecord& record, const std::string& status) {
   const std::vector<TelemetrySample>& s = record.samples;
-  const py::ssize_t n = static_cast<py::ssize_t>(s.size());
-  const auto matrix = [n](int columns) {
-    return py::array_t<double>({n, static_cast<py::ssize_t>(columns)});
-  };
-  py::array_t<double> time(n), yaw(n), yaw_dot(n), thrust(n), error(n), clearance(n);
-  auto x = matrix(3), v = matrix(3), q = matrix(4), w = matrix(3);
-  auto fx = matrix(3), fv = matrix(3), fa = matrix(3), fj = matrix(3), fs = matrix(3);
-  auto motors = matrix(4), moment = matrix(3), produced = matrix(4);
-  auto wind = matrix(3), drag = matrix(3);
-  const bool sensed = !s.empty() && s.front().estimate.has_value();
-  const py::ssize_t m = sensed ? n : 0;
-  auto ex = py::array_t<double>({m, py::ssize_t{3}}), ev = py::array_t<double>({m, py::ssize_t{3}});
-  auto eq = py::array_t<double>({m, py::ssize_t{4}}), ew = py::array_t<double>({m, py::ssize_t{3}});
-  auto gyro = py::array_t<double>({m, py::ssize_t{3}}),
-       accel = py::array_t<double>({m, py::ssize_t{3}});
-  py::array_t<double> estimate_error(m), nees(m);
-  const auto put = [](py::array_t<double>& a, py::ssize_t i, const double* values, int k) {
-    double* row = a.mutable_data(i, 0);
-    for (int c = 0; c < k; ++c) row[c] = values[c];
-  };
-  for (py::ssize_t i = 0; i < n; ++i) {
-    const TelemetrySample& r = s[static_cast<size_t>(i)];
-    time.mutable_at(i) = r.t;
-    put(x, i, r.state.p_W.data(), 3);
-    put(v, i, r.state.v_W.data(), 3);
-    const double quat[4] = {r.state.q_WB.x(), r.state.q_WB.y(), r.state.q_WB.z(), r.state.q_WB.w()};
-    put(q, i, quat, 4);
-    put(w, i, r.state.w_B.data(), 3);
-    put(fx, i, r.setpoint.p_W.data(), 3);
-    put(fv, i, r.setpoint.v_W.data(), 3);
-    put(fa, i, r.setpoint.a_W.data(), 3);
-    put(fj, i, r.setpoint.j_W.data(), 3);
-    put(fs, i, r.setpoint.s_W.data(), 3);
-    yaw.mutable_at(i) = r.setpoint.yaw;
-    yaw_dot.mutable_at(i) = r.setpoint.yaw_rate;
-    put(motors, i, r.inner.mixer.thrusts.data(), 4);
-    thrust.mutable_at(i) = r.inner.thrust;
-    put(moment, i, r.inner.moment_B.data(), 3);
-    put(produced, i, r.rotor_thrusts.data(), 4);
-    error.mutable_at(i) = r.position_error;
-    clearance.mutable_at(i) = r.clearance;
-    put(wind, i, r.wind_W.data(), 3);
-    put(drag, i, r.aero_force_W.data(), 3);
-    if (sensed && r.estimate) {
-      const State& e = r.estimate->estimate;
-      put(ex, i, e.p_W.data(), 3);
-      put(ev, i, e.v_W.data(), 3);
-      const double eq4[4] = {e.q_WB.x(), e.q_WB.y(), e.q_WB.z(), e.q_WB.w()};
-      put(eq, i, eq4, 4);
-      put(ew, i, e.w_B.data(), 3);
-      put(gyro, i, r.estimate->imu.gyro_B.data(), 3);
-      put(accel, i, r.estimate->imu.accel_B.data(), 3);
-      estimate_error.mutable_at(i) = r.estimate->error.head<3>().norm();
-      nees.mutable_at(i) = r.estimate->nees;
-    }
-  }
-  py::dict state, control, flat, result;
-  state["x"] = x;
-  state["v"] = v;
-  state["q"] = q;
-  state["w"] = w;
-  control["cmd_motor_thrusts"] = motors;
-  control["cmd_thrust"] = thrust;
-  control["cmd_moment"] = moment;
-  flat["x"] = fx;
-  flat["x_dot"] = fv;
-  flat["x_ddot"] = fa;
-  flat["x_dddot"] = fj;
-  flat["x_ddddot"] = fs;
-  flat["yaw"] = yaw;
-  flat["yaw_dot"] = yaw_dot;
   const FlightResult& f = record.flight;
-  result["time"] = time;
-  result["state"] = state;
-  result["control"] = control;
-  result["flat"] = flat;
-  result["rotor_thrusts"] = produced;
-  result["position_error"] = error;
-  result["clearance"] = clearance;
+  py::dict result;
+  AddColumns(s, kFlightColumns, &result);
   result["status"] = status;
   result["reached_goal"] = f.status == FlightStatus::kReachedGoal;
   result["collisions"] = f.status == FlightStatus::kCollision ? 1 : 0;
@@ -292,21 +293,12 @@ py::dict Result(const FlightRecord& record, const std::string& status) {
   result["control_rate"] = f.control_rate;
   result["wall_time"] = record.wall_time;
   result["seed"] = static_cast<long long>(record.setup->seed);
-  result["wind"] = wind;
-  result["drag"] = drag;
   result["max_wind"] = f.max_wind;
+  const bool sensed = !s.empty() && std::all_of(s.begin(), s.end(), [](const Sample& r) {
+    return r.estimate.has_value();
+  });
   if (sensed) {
-    py::dict estimate, imu;
-    estimate["x"] = ex;
-    estimate["v"] = ev;
-    estimate["q"] = eq;
-    estimate["w"] = ew;
-    imu["gyro"] = gyro;
-    imu["accel"] = accel;
-    result["estimate"] = estimate;
-    result["imu"] = imu;
-    result["estimate_error"] = estimate_error;
-    result["nees"] = nees;
+    AddColumns(s, kEstimateColumns, &result);
     result["estimate_rms"] = f.estimate_rms_error;
     result["estimate_max"] = f.estimate_max_error;
   }
@@ -348,15 +340,11 @@ class SimulatorCore {
   void SetWindSource(const py::object& wind) {
     base_.wind_source = nullptr;
     if (!wind.is_none()) {
-      if (!py::hasattr(wind, "update")) {
-        throw py::value_error(
-            "wind: expected a table of keys or an object with update(t, position)");
-      }
+      // the bound method keeps the user's object alive
       base_.wind_source = [update = wind.attr("update")](double t, const Vec3& p_W) {
         return PointFrom(update(t, Vec3Array(p_W)), At("wind.update", t) + ": the wind");
       };
     }
-    wind_source_ = wind;
     MakeWorld();
   }
 
@@ -370,13 +358,14 @@ class SimulatorCore {
   }
 
   // The true state, with the wind at the vehicle and the rotors' speeds.
-  py::dict StateNow() const { return Seen(world_->Truth()); }
+  py::dict StateNow() const { return DictOf(world_->Truth()); }
 
   // The state a controller flies on (as run() gives it to controller.update): the estimate
   // with sensors on, else the truth.
-  py::dict SeenNow() const { return Seen(world_->Seen(world_->Truth())); }
+  py::dict SeenNow() const { return DictOf(world_->Seen(world_->Truth())); }
 
-  py::dict Seen(const State& state) const {
+  // `state` as RotorPy's dict, with the wind at the vehicle and the rotors' speeds now.
+  py::dict DictOf(const State& state) const {
     const Surroundings now = world_->Now();
     return StateDict(state, now.rotor_thrusts, setup_->vehicle, now.wind_W);
   }
@@ -532,8 +521,7 @@ class SimulatorCore {
   Simulation sim_;
   CollisionWorld obstacles_;
   std::uint64_t seed_;
-  FlightLoop base_;         // the vehicle, its inner loops, the air and the sensors: the world's
-  py::object wind_source_;  // the user's wind object, kept alive for base_.wind_source
+  FlightLoop base_;  // the vehicle, its inner loops, the air and the sensors: the world's
   std::unique_ptr<VehicleWorld> world_;
 };
 

@@ -168,12 +168,12 @@ class Environment:
             path = os.path.join(folder, "world.json")
             with open(path, "w") as file:
                 json.dump(_plain(data), file)
-            with warnings.catch_warnings(record=True) as said:
+            with warnings.catch_warnings(record=True):  # said once below, in RotorPy's terms
                 warnings.simplefilter("always")
                 sim = Simulator(path, vehicle=self.quad_params, start=start, **keys)
-        # RotorPy's own dicts name keys aerobox adds nothing to; what changes the flight is said
+        # a Multirotor has no rotor radius; the one aerobox adds sizes only its collision box
         notes = [n for n in sim.vehicle_notes if not n.startswith("added rotor_radius")]
-        if said and notes:
+        if notes:
             warnings.warn("aerobox.rotorpy: the Multirotor, as aerobox flies it:\n  "
                           + "\n  ".join(notes), stacklevel=3)
         return sim
@@ -214,8 +214,7 @@ class Environment:
         normal_exit = self._normal_exit(terminate, initial)
         start = clock.time()
         sim, mocap, imu = self._sim, self.mocap, self.imu
-        first = sim.reset(state=initial)
-        state = [dict(initial, wind=first["wind"], rotor_speeds=first["rotor_speeds"])]
+        state = [sim.reset(state=initial)]  # x, v, q, w, wind, rotor_speeds: as every step's
         time = [0.0]
         flat = [self.trajectory.update(0.0)]
         mocap_measurements = [mocap.measurement(state[-1], with_noise=True, with_artifacts=False)]
