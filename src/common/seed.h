@@ -14,6 +14,7 @@ enum class SeedStream : std::uint64_t {
   kPositionSensor = 3,
   kInitialEstimate = 4,
   kUnknownBoxes = 5,
+  kMotorNoise = 6,
 };
 
 // A seed for `stream` derived from `seed` (SplitMix64 over both: well mixed, and the same on

@@ -156,11 +156,12 @@ class FlightRun {
       std::snprintf(at, sizeof(at), "%.2f", t);
       return "flying (at t = " + std::string(at) + " s)";
     });
+    const bool control_step = k % divider_ == 0;
+    if (control_step && k > 0) world_->EndControlPeriod();
     const State state = world_->Truth();
     if (!AllFinite(state)) return End(FlightStatus::kNonFinite);
     const double tr = takeoff_.ReferenceTime(t, state);  // the reference's own time [s]
     const State seen = world_->Seen(state);              // what the controller sees
-    const bool control_step = k % divider_ == 0;
     if (control_step && !Control(t, tr, seen)) return false;
     // the inner loops every step, on the command held between control steps
     if (!world_->Command(command_, seen)) return End(FlightStatus::kNonFinite);

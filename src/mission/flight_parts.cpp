@@ -98,6 +98,23 @@ void Air::Clear(Simulation* sim) const {
   if (enabled_) sim->SetExternalWrench(Vec3::Zero(), Vec3::Zero());
 }
 
+MotorNoise::MotorNoise(const QuadParams& vehicle, std::uint64_t seed)
+    : vehicle_(&vehicle),
+      sigma_(vehicle.motor_noise),
+      rng_(StreamSeed(seed, SeedStream::kMotorNoise)) {}
+
+void MotorNoise::Apply(Simulation* sim) {
+  if (!enabled()) return;
+  const double low = vehicle_->RotorSpeedFor(vehicle_->MinRotorThrust());
+  const double high = vehicle_->RotorSpeedFor(vehicle_->MaxRotorThrust());
+  Vec4 thrusts = sim->RotorThrusts();
+  for (int i = 0; i < kNumRotors; ++i) {
+    const double speed = vehicle_->RotorSpeedFor(thrusts[i]) + sigma_ * normal_(rng_);
+    thrusts[i] = vehicle_->ThrustAtSpeed(std::clamp(speed, low, high));
+  }
+  sim->SetProducedThrusts(thrusts);
+}
+
 namespace {
 
 // The physics step [s], once the world's parameters are checked against it.
@@ -115,7 +132,8 @@ VehicleWorld::VehicleWorld(const FlightLoop& loop, Simulation* sim)
       step_(CheckedStep(loop, *sim)),
       t0_(sim->time()),
       inner_(loop.inner, *loop.vehicle),
-      air_(loop, Truth().p_W) {
+      air_(loop, Truth().p_W),
+      motor_noise_(*loop.vehicle, loop.seed) {
   if (loop.sensors.Enabled()) sensing_.emplace(loop.sensors, loop.seed, step_, 0.0, Truth());
 }
 

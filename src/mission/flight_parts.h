@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <random>
 
 #include "common/flat_output.h"
 #include "common/state.h"
@@ -90,10 +91,28 @@ class Air {
   Wrench wrench_;
 };
 
+// Rotor speed noise (QuadParams::motor_noise), as RotorPy adds its motor_noise_std: once per
+// control period, each rotor's produced speed takes N(0, sigma^2) [rad/s], clipped to the
+// rotor's range; the motor lag carries it from there. Its own seeded stream.
+class MotorNoise {
+ public:
+  MotorNoise(const QuadParams& vehicle, std::uint64_t seed);
+  bool enabled() const { return sigma_ > 0.0; }
+  // At a control period's end: perturbs the produced thrusts.
+  void Apply(Simulation* sim);
+
+ private:
+  const QuadParams* vehicle_;
+  double sigma_;  // [rad/s]
+  std::mt19937_64 rng_;
+  std::normal_distribution<double> normal_{0.0, 1.0};
+};
+
 // One vehicle in its world below the controller's command, a physics step at a time: the inner
-// loops on what the vehicle senses, the air (wind and drag), the physics, then the sensors and
-// the estimator. The flight loop (FlyTrajectory) steps it and so does Python's Simulator.step,
-// so a loop of step() calls flies as run() does, to the bit. Its clock starts where it is made.
+// loops on what the vehicle senses, the air (wind and drag), the physics, then the sensors and the
+// estimator; the rotors' noise at each control period's end. The flight loop (FlyTrajectory) steps
+// it and so does Python's Simulator.step, so a loop of step() calls flies as run() does, to the
+// bit. Its clock starts where it is made.
 class VehicleWorld {
  public:
   // From `loop`'s vehicle, inner loops, wind, drag, sensors, seed and floor, around `sim` (which
@@ -115,6 +134,9 @@ class VehicleWorld {
   // The physics step from `truth` with the rotors' last commands, in the air; the sensors after
   // it. Returns the state after the step.
   State Step(const State& truth);
+  // At the end of each control period, before the controller's next update: the rotors' noise
+  // (MotorNoise), as RotorPy adds it after each of its simulation steps.
+  void EndControlPeriod() { motor_noise_.Apply(sim_); }
   // Takes the air's wrench off the simulation (at a flight's end).
   void ClearAir() { air_.Clear(sim_); }
 
@@ -129,6 +151,7 @@ class VehicleWorld {
   double t0_;    // [s] the simulation's time when the world was made
   InnerLoops inner_;
   Air air_;
+  MotorNoise motor_noise_;
   std::optional<SensorSuite> sensing_;
   InnerOutput inner_out_;
 };

@@ -388,6 +388,7 @@ class SimulatorCore {
       }
       world_->Step(truth);
     }
+    world_->EndControlPeriod();  // `dt` is the command's control period
     return SeenNow();
   }
 

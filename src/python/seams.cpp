@@ -325,7 +325,6 @@ class DictReader {
         {"Iyz", "off-diagonal inertia: the body's axes are its principal axes"},
         {"k_h", "translational lift: not modelled"},
         {"k_flap", "blade flapping: not modelled"},
-        {"motor_noise_std", "motor noise: not modelled (the rotors produce what is commanded)"},
     };
     for (const auto item : dict_) {
       const std::string key = py::str(item.first);
@@ -421,6 +420,19 @@ void ReadMotorLag(DictReader& d, bool flightsim, double step, QuadParams* v) {
   }
 }
 
+// RotorPy's motor_noise_std: it adds N(0, sigma^2) to the rotor speeds after each simulation
+// step (its magnitude: RotorPy takes np.abs); aerobox once per control period, the same when
+// the controller runs at RotorPy's sim_rate.
+void ReadMotorNoise(DictReader& d, QuadParams* v) {
+  if (!d.has("motor_noise_std")) return;
+  v->motor_noise = std::abs(d.number("motor_noise_std"));
+  if (v->motor_noise > 0) {
+    d.Adjusted("motor_noise_std " + FormatNumber(v->motor_noise) +
+               " rad/s -> added to each rotor's speed once per control period (RotorPy adds it "
+               "once per simulation step: the same when the controller runs at its sim_rate)");
+  }
+}
+
 // Where the rotors are, in the dict's order (RotorPy's Multirotor iterates rotor_pos so too),
 // never reordered: rotor i of the commands is the i-th entry the user gave. flightsim's
 // arm_length: a "+" with rotors on +x, +y, -x, -y.
@@ -513,6 +525,7 @@ QuadParams VehicleFromDict(py::handle value, double physics_step, VehicleNotes* 
   ReadInertia(d, &v);
   ReadRotors(d, &v);
   ReadMotorLag(d, flightsim, physics_step, &v);
+  ReadMotorNoise(d, &v);
   ReadLayout(d, &v);
   ReadDrag(d, &v);
   d.ListIgnored();
@@ -548,7 +561,7 @@ py::dict VehicleDict(const QuadParams& v) {
   dict["rotor_speed_min"] = v.RotorSpeedFor(v.min_rotor_thrust);
   dict["rotor_speed_max"] = v.RotorSpeedFor(v.max_rotor_thrust);
   dict["tau_m"] = VectorArray(Vec4::Constant(v.motor_time_constant).eval().data(), 4);
-  dict["motor_noise_std"] = 0.0;
+  dict["motor_noise_std"] = v.motor_noise;
   return dict;
 }
 

@@ -107,6 +107,10 @@ void Simulation::SetRotorThrusts(const Vec4& thrusts) {
   mj_forward(model_.get(), data_.get());
 }
 
+void Simulation::SetProducedThrusts(const Vec4& thrusts) {
+  for (int i = 0; i < kNumRotors; ++i) data_->act[act_adr_[i]] = thrusts[i];
+}
+
 State Simulation::VehicleState() const {
   State state;
   const double* qpos = data_->qpos + qpos_adr_;

@@ -51,6 +51,9 @@ class Simulation {
   Vec4 RotorThrusts() const;
   // Sets the produced thrusts and the commands (e.g. start in hover without spin-up).
   void SetRotorThrusts(const Vec4& thrusts);
+  // Sets the produced thrusts only (the motor-lag state; e.g. rotor noise): the next Step
+  // starts from them.
+  void SetProducedThrusts(const Vec4& thrusts);
 
   State VehicleState() const;
   // Places the vehicle and recomputes derived quantities (mj_forward).

@@ -63,6 +63,8 @@ void QuadParams::Describe(Archive& a) {
            &yaw_moment_per_thrust, 1e-6, 1);
   a.Number({"motor_time_constant", "s", "the thrust's first-order lag"}, &motor_time_constant, 1e-4,
            1);
+  a.Number({"motor_noise", "rad/s", "rotor speed noise added once per control period"},
+           &motor_noise, 0, 1e4);
   a.Vector({"collision_size", "m", "the collision box's full sides"}, &collision_size, 1e-3, 10);
   a.Vector({"body_drag", "N/(m/s)^2", "quadratic body drag per body axis (c_Dx, c_Dy, c_Dz)"},
            &body_drag, 0, 10);
@@ -105,6 +107,10 @@ void QuadParams::Validate() const {
   RequirePositive(thrust_coefficient, "thrust_coefficient");
   RequirePositive(yaw_moment_per_thrust, "yaw_moment_per_thrust");
   RequirePositive(motor_time_constant, "motor_time_constant");
+  if (!(std::isfinite(motor_noise) && motor_noise >= 0.0)) {
+    throw std::invalid_argument("QuadParams.motor_noise must be >= 0 rad/s, got " +
+                                FormatNumber(motor_noise));
+  }
   RequirePositive(propeller_radius, "propeller_radius");
   RequirePositive(guard_radius, "guard_radius");
   if (kNumRotors * max_rotor_thrust <= mass * kGravity) {

@@ -64,6 +64,12 @@ struct QuadParams {
   // MuJoCo 2.2's filter actuator has one time constant, so 20 ms sits between the two.
   double motor_time_constant = 0.020;
 
+  // Rotor speed noise [rad/s]: N(0, sigma^2) added to each rotor's produced speed once per
+  // control period (RotorPy's motor_noise_std, which it adds once per simulation step, the
+  // period its controller runs at); the motor lag then carries it. 0: the rotors produce what
+  // is commanded.
+  double motor_noise = 0.0;
+
   // Top speed [m/s]: DJI's specification for the Tello, 8 m/s. Trajectories stay below it.
   double max_speed = 8.0;
 

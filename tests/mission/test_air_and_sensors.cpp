@@ -9,6 +9,7 @@
 
 #include "flight_test_util.h"
 #include "mission/flight.h"
+#include "mission/flight_parts.h"
 
 namespace aerobox {
 namespace {
@@ -159,6 +160,46 @@ TEST_CASE("the same seed gives the same turbulence and noise, byte for byte") {
   }
   CHECK(a.samples[100].wind_W != c.samples[100].wind_W);
   CHECK(a.result.status == FlightStatus::kReachedGoal);
+}
+
+TEST_CASE("the rotors' noise: N(0, sigma^2) on each rotor's speed per control period, seeded") {
+  QuadParams vehicle;
+  vehicle.motor_noise = 30.0;  // [rad/s]
+  Simulation sim = RoomAt(Vec3(0, 0, 1));
+  const double hover = vehicle.RotorSpeedFor(vehicle.HoverThrustPerRotor());
+  const auto draws = [&](std::uint64_t seed, double thrust, int n) {
+    MotorNoise noise(vehicle, seed);
+    std::vector<double> speeds;
+    for (int k = 0; k < n; ++k) {
+      sim.SetRotorThrusts(Vec4::Constant(thrust));
+      noise.Apply(&sim);
+      for (int i = 0; i < kNumRotors; ++i) {
+        speeds.push_back(vehicle.RotorSpeedFor(sim.RotorThrusts()[i]));
+      }
+    }
+    return speeds;
+  };
+  const std::vector<double> a = draws(3, vehicle.HoverThrustPerRotor(), 1000);
+  double sum = 0.0, squares = 0.0;
+  for (double w : a) {
+    sum += w - hover;
+    squares += (w - hover) * (w - hover);
+  }
+  const double n = static_cast<double>(a.size());
+  CHECK(std::abs(sum / n) < 4.0 * 30.0 / std::sqrt(n));  // unbiased, within 4 standard errors
+  // the variance within the chi-square distribution's 0.01 % tails
+  CHECK(squares / (30.0 * 30.0) > ChiSquareQuantile(n, -3.72));
+  CHECK(squares / (30.0 * 30.0) < ChiSquareQuantile(n, 3.72));
+  CHECK(draws(3, vehicle.HoverThrustPerRotor(), 10) ==
+        std::vector<double>(a.begin(), a.begin() + 40));
+  CHECK(draws(4, vehicle.HoverThrustPerRotor(), 10) !=
+        std::vector<double>(a.begin(), a.begin() + 40));
+  // at the rotor's top speed, the noise cannot pass it
+  const double top = vehicle.RotorSpeedFor(vehicle.MaxRotorThrust());
+  for (double w : draws(3, vehicle.MaxRotorThrust(), 50)) CHECK(w <= top + 1e-9);
+  // none asked for, none added
+  vehicle.motor_noise = 0.0;
+  for (double w : draws(3, vehicle.HoverThrustPerRotor(), 5)) CHECK(w == doctest::Approx(hover));
 }
 
 TEST_CASE("a gust the controller cannot hold is a fly-away, not a success") {

@@ -325,6 +325,22 @@ class StepIsRun(unittest.TestCase):
             self.assertFalse(np.array_equal(other["wind"], run["wind"]))
             np.testing.assert_array_equal([r[1] for r in other_rows], other["state"]["x"])
 
+    def test_with_motor_noise_too(self):
+        # the rotors' noise is drawn at each control period's end, in step() as in run()
+        with tempfile.TemporaryDirectory() as folder:
+            noisy = dict(RotorPyVehicle.QUAD_PARAMS, motor_noise_std=20.0)
+            sim = aerobox.Simulator(empty_map(folder), vehicle=noisy, start=[1.0, 0.0, 1.5])
+            run, rows = self.fly_both(sim, seed=3, rate=100)
+            np.testing.assert_array_equal([r[1] for r in rows], run["state"]["x"])
+            np.testing.assert_array_equal([r[2] for r in rows], run["state"]["q"])
+            other, _ = self.fly_both(sim, seed=4, rate=100)
+            quiet = aerobox.Simulator(empty_map(folder), start=[1.0, 0.0, 1.5],
+                                      vehicle=dict(noisy, motor_noise_std=0.0))
+            still, _ = self.fly_both(quiet, seed=3, rate=100)
+            # the noise moved the vehicle, and another seed drew other noise
+            self.assertGreater(np.abs(run["state"]["x"] - still["state"]["x"]).max(), 1e-4)
+            self.assertGreater(np.abs(run["state"]["x"] - other["state"]["x"]).max(), 1e-4)
+
     def test_the_seed_given_to_the_simulator_is_the_run_s(self):
         with tempfile.TemporaryDirectory() as folder:
             a = aerobox.Simulator(empty_map(folder), seed=7, **self.KEYS)
@@ -564,16 +580,25 @@ class RotorPyVehicle(unittest.TestCase):
         with tempfile.TemporaryDirectory() as folder:
             sim = aerobox.Simulator(empty_map(folder), vehicle=self.QUAD_PARAMS, start=[1, 0, 1.5])
             # what has no counterpart, with why; a zero off-diagonal inertia loses nothing
-            self.assertEqual(sim.ignored_vehicle_keys, ["k_h", "motor_noise_std"])
+            self.assertEqual(sim.ignored_vehicle_keys, ["k_h"])
             self.assertIn("ignored k_h: translational lift: not modelled", sim.vehicle_notes)
-            # the drag terms are read: body drag term for term, rotor drag at hover
+            # the drag terms are read: body drag term for term, rotor drag at hover; the motor
+            # noise once per control period
             self.assertEqual(sim.added_vehicle_keys, [])
-            self.assertEqual(len(sim.adjusted_vehicle_keys), 3, sim.adjusted_vehicle_keys)
+            self.assertEqual(len(sim.adjusted_vehicle_keys), 4, sim.adjusted_vehicle_keys)
             self.assertRegex(sim.adjusted_vehicle_keys[1],
+                             r"^motor_noise_std 100 rad/s -> added to each rotor's speed once per "
+                             r"control period \(.*\)$")
+            self.assertRegex(sim.adjusted_vehicle_keys[2],
                              r"^k_d, k_z -> rotor drag 0.0249, 0.0184 s/m per newton of thrust "
                              r"\(.* equal at hover, 1789 rad/s\)$")
-            self.assertIn("only with aero={'drag': True}", sim.adjusted_vehicle_keys[2])
+            self.assertIn("only with aero={'drag': True}", sim.adjusted_vehicle_keys[3])
             self.assertAlmostEqual(sim.quad_params["mass"], 0.03)
+            self.assertEqual(sim.quad_params["motor_noise_std"], 100)
+            # the flights below are the noiseless vehicle's (the noise: test_motor_noise)
+            sim = aerobox.Simulator(empty_map(folder), vehicle=dict(self.QUAD_PARAMS,
+                                                                   motor_noise_std=0.0),
+                                    start=[1, 0, 1.5])
             controller = SE3Control(sim.quad_params)
             hover = sim.run(controller, Circle(r=0.0, laps=1))
             self.assertEqual(hover["status"], "reached goal")

@@ -274,8 +274,9 @@ class Simulator:
         follows the command after one 1 ms physics step).
         What aerobox adds (a key absent: a default motor lag, rotor_directions, rotor_radius),
         adjusts (principal moments MuJoCo would refuse by a rounding, as RotorPy's Crazyflie's
-        Izz, are set to the sum; the rotor drag's mapping) or ignores (off-diagonal inertia,
-        k_h, k_flap, motor_noise_std when not zero, unknown keys) is listed in
+        Izz, are set to the sum; the rotor drag's mapping; motor_noise_std [rad/s], drawn once
+        per control period as RotorPy draws it once per simulation step) or ignores
+        (off-diagonal inertia, k_h, k_flap, unknown keys) is listed in
         `added_vehicle_keys`, `adjusted_vehicle_keys`, `ignored_vehicle_keys`, all of it with
         the reasons in `vehicle_notes` (also in run()'s result), and printed once as a warning.
     start: [m]; the vehicle rests there (on the floor when the start is at floor level,
@@ -356,7 +357,7 @@ class Simulator:
         """Back to the start at t = 0: at rest on the floor, or hovering level with the rotors at
         hover speed when the start is in the air (or to `state`, RotorPy's dict: x [m], v [m/s],
         q [i, j, k, w], w [rad/s], and rotor_speeds [rad/s], else the rotors at hover). `seed`
-        seeds the turbulence and the sensors' noise (the same seed gives the same flight; the
+        seeds the turbulence, the sensors' and the rotors' noise (the same seed gives the same flight; the
         default is the Simulator's). The wind, the sensors and the estimator start anew.
         Returns the state a controller sees, as step() does."""
         if seed is not None:

@@ -22,11 +22,11 @@ run ends on the first of: a safety failure (a speed component above 20 m/s, a bo
 imu_measurements, imu_gt, mocap_measurements, state_estimate, exit, camera_measurements).
 
 What aerobox flies instead of RotorPy's Multirotor.step: MuJoCo at a 1 ms step, the vehicle's
-quad_params read off the Multirotor (its mass, inertia, rotors, motor lag and drag terms;
-aerobox.Simulator's vehicle notes say what maps how), its control_abstraction through aerobox's
-inner loops (cmd_vel and cmd_acc have none), its aero flag as aerobox's drag, the wind profile
-asked every 1 ms, and the world's blocks as boxes MuJoCo collides with (no world: an empty room
-around the start, as RotorPy's free space). The IMU reads the accelerations of the last physics
+quad_params read off the Multirotor (its mass, inertia, rotors, motor lag, motor noise and drag
+terms; aerobox.Simulator's vehicle notes say what maps how), its control_abstraction through
+aerobox's inner loops (cmd_vel and cmd_acc have none), its aero flag as aerobox's drag, the wind
+profile asked every 1 ms, and the world's blocks as boxes MuJoCo collides with (no world: an
+empty room around the start, as RotorPy's free space). The IMU reads the accelerations of the last physics
 step (Simulator.statedot) where RotorPy computes its model's. The user's IMU, mocap, estimator,
 camera and world are called as RotorPy calls them; the defaults (None) are RotorPy's own, made
 as its Environment makes them, so RotorPy must be installed for them.
@@ -214,7 +214,11 @@ class Environment:
         normal_exit = self._normal_exit(terminate, initial)
         start = clock.time()
         sim, mocap, imu = self._sim, self.mocap, self.imu
-        state = [sim.reset(state=initial)]  # x, v, q, w, wind, rotor_speeds: as every step's
+        # aerobox's own noise (the rotors', with the Multirotor's motor_noise_std) is seeded from
+        # numpy's global generator, which RotorPy draws all of its noise from: np.random.seed(k)
+        # before a run repeats it, and each run draws anew
+        seed = int(np.random.randint(1, 2**31 - 1))
+        state = [sim.reset(seed=seed, state=initial)]  # x, v, q, w, wind, rotor_speeds
         time = [0.0]
         flat = [self.trajectory.update(0.0)]
         mocap_measurements = [mocap.measurement(state[-1], with_noise=True, with_artifacts=False)]
