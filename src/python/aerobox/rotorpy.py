@@ -299,6 +299,22 @@ class Environment:
         return savepath
 
 
+    def save_camera_data(self, savepath=None, save_pngs=False):
+        """The run's camera frames as RotorPy's .npz archive (and each frame as a png with
+        save_pngs), written by RotorPy's own Environment.save_camera_data."""
+        if self.result is None or self.result.get("camera_measurements") is None:
+            raise ValueError("Environment.save_camera_data: there are no camera frames: run() "
+                             "with a camera first")
+        _need_rotorpy("save_camera_data")
+        from rotorpy.environments import Environment as RotorPyEnvironment
+
+        savepath = savepath or "rotorpy_camera_results.npz"
+        if not savepath.endswith(".npz"):
+            savepath += ".npz"
+        RotorPyEnvironment.save_camera_data(self, savepath, save_pngs)
+        return savepath
+
+
 class _CameraLog:
     """A camera's frames at its frame_rate [Hz] (every step without one), as RotorPy keeps them."""
 
