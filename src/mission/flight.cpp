@@ -76,39 +76,6 @@ void PlaceVehicleAtStart(const Map& map, const QuadParams& vehicle, const Vec3& 
 
 namespace {
 
-// Whether the vehicle rests where the flight ends (Completion), at the reference's time tr [s].
-bool Complete(const FlightParams& params, const Completion& completion, double tr, double duration,
-              const State& state, const Vec3& end) {
-  switch (completion.kind) {
-    case Completion::Kind::kNever:
-      return false;
-    case Completion::Kind::kAtEnd:
-      return tr >= duration && (state.p_W - end).norm() < params.goal_tolerance &&
-             state.v_W.norm() < params.goal_speed;
-    case Completion::Kind::kAtPoint:
-      return tr >= completion.from &&
-             (state.p_W - completion.point).norm() < completion.point_tolerance &&
-             state.v_W.norm() <= completion.point_speed;
-  }
-  return false;
-}
-
-// Why the flight ends after this control and inner-loop step, if it does: lost, arrived, late.
-
-std::optional<FlightStatus> Verdict(const FlightParams& params, const FlightLoop& loop,
-                                    const Takeoff& takeoff, double t, double tr, double duration,
-                                    double error, const State& state, const Vec3& goal,
-                                    size_t goals_reached) {
-  if (error > params.flyaway_distance) return FlightStatus::kFlyAway;
-  if (!takeoff.lifting() && Complete(params, loop.completion, tr, duration, state, goal)) {
-    return goals_reached == loop.goals.size() ? FlightStatus::kReachedGoal
-                                              : FlightStatus::kMissedGoal;
-  }
-  const double end_time = duration + params.settle_time;
-  if (t >= end_time + takeoff.time()) return FlightStatus::kTimeout;
-  return std::nullopt;
-}
-
 // The first contact of the vehicle with anything but the floor it has not yet left, if any.
 std::optional<std::string> Collision(const std::vector<VehicleContact>& contacts, bool airborne) {
   for (const VehicleContact& contact : contacts) {
@@ -131,17 +98,15 @@ double YawOf(const State& state) {
 class FlightRun {
  public:
   FlightRun(const Reference& reference, const FlightParams& params, const FlightLoop& loop,
-            VehicleWorld* world)
-      : params_(params),
-        loop_(loop),
-        world_(world),
-        divider_(StepsPerPeriod(loop.control_rate, world->step(), "the controller's rate")),
-        setpoints_(reference, params.face_travel, YawOf(world->Truth())),
-        goal_(reference.evaluate(reference.duration, kPosition)),
-        takeoff_(reference.evaluate(0.0, kPosition), world->Truth(),
-                 !world->sim().VehicleContacts().empty()),
-        nan_from_(loop.nonfinite_setpoint_from),
-        metrics_(*loop.vehicle) {
+            const FlightParts& parts)
+      : loop_(loop),
+        parts_(parts),
+        world_(parts.world),
+        takeoff_(*parts.takeoff),
+        goal_tolerance_(params.goal_tolerance),
+        goal_speed_(params.goal_speed),
+        divider_(StepsPerPeriod(loop.control_rate, world_->step(), "the controller's rate")),
+        setpoints_(reference, params.face_travel, YawOf(world_->Truth())) {
     result_.control_rate = loop.control_rate;
     world_->sim().TakeNewWarnings();  // what loading and placing raised is not the flight's
     t0_ = world_->time();
@@ -167,14 +132,17 @@ class FlightRun {
     if (!world_->Command(command_, seen)) return End(FlightStatus::kNonFinite);
     ReachGoals(t, state);
     const double error = (state.p_W - setpoint_.p_W).norm();
-    if (control_step) Record(t, state, seen, error);
-    if (control_step && loop_.terminate && loop_.terminate(t, state)) {
-      return End(FlightStatus::kTerminated);
-    }
-    if (const std::optional<FlightStatus> verdict =
-            Verdict(params_, loop_, takeoff_, t, tr, setpoints_.duration(), error, state, goal_,
-                    result_.goal_times.size())) {
-      return End(*verdict);
+    if (control_step) Observe(t, state, error);
+    const FlightMoment now{t,
+                           tr,
+                           state,
+                           error,
+                           control_step,
+                           takeoff_,
+                           setpoints_.duration(),
+                           result_.goal_times.size()};
+    for (FlightRule* rule : parts_.rules) {
+      if (const std::optional<FlightStatus> verdict = rule->Judge(now)) return End(*verdict);
     }
     return Physics(state);
   }
@@ -182,7 +150,7 @@ class FlightRun {
   FlightResult Finish() {
     result_.time = world_->time() - t0_;
     result_.takeoff_time = takeoff_.time();
-    metrics_.Fill(&result_);
+    for (const FlightObserver* observer : parts_.observers) observer->Finish(&result_);
     world_->ClearAir();
     return std::move(result_);
   }
@@ -203,7 +171,9 @@ class FlightRun {
       }
     }
     setpoint_ = setpoints_.At(tr);
-    if (t >= nan_from_) setpoint_.p_W.x() = std::numeric_limits<double>::quiet_NaN();
+    if (t >= loop_.nonfinite_setpoint_from) {
+      setpoint_.p_W.x() = std::numeric_limits<double>::quiet_NaN();
+    }
     loop_.controller->Sense(world_->Now());
     ControlStatus control = loop_.controller->Update(t, seen, setpoint_, &command_);
     if (control.ok()) return true;
@@ -217,36 +187,45 @@ class FlightRun {
   void ReachGoals(double t, const State& state) {
     if (result_.goal_times.size() >= loop_.goals.size()) return;
     const Vec3& next = loop_.goals[result_.goal_times.size()];
-    if ((state.p_W - next).norm() < params_.goal_tolerance &&
-        (!loop_.stop_at_goals || state.v_W.norm() < params_.goal_speed)) {
+    if ((state.p_W - next).norm() < goal_tolerance_ &&
+        (!loop_.stop_at_goals || state.v_W.norm() < goal_speed_)) {
       result_.goal_times.push_back(t);
     }
   }
 
-  // At the controller's rate: the metrics and the telemetry sample.
-  void Record(double t, const State& state, const State& seen, double error) {
+  // At the controller's rate: the telemetry row, to every observer.
+  void Observe(double t, const State& state, double error) {
     const double c =
         loop_.clearance ? loop_.clearance(state.p_W) : std::numeric_limits<double>::infinity();
     const SensorSuite* sensing = world_->sensing();
-    metrics_.ControlStep(
-        error, !takeoff_.lifting(), c,
-        sensing ? std::optional<double>((seen.p_W - state.p_W).norm()) : std::nullopt);
-    if (!loop_.telemetry) return;
     loop_.controller->Report(&report_);
-    loop_.telemetry(
-        {t, state, setpoint_, command_, world_->inner(), world_->sim().RotorThrusts(), error, c,
-         report_, static_cast<int>(result_.goal_times.size()), result_.replans,
-         world_->air().wind(), world_->air().wrench().force_W,
-         sensing ? std::optional<EstimateSample>(sensing->Sample(state)) : std::nullopt});
+    const TelemetrySample sample{
+        t,
+        state,
+        setpoint_,
+        command_,
+        world_->inner(),
+        world_->sim().RotorThrusts(),
+        error,
+        c,
+        report_,
+        static_cast<int>(result_.goal_times.size()),
+        result_.replans,
+        world_->air().wind(),
+        world_->air().wrench().force_W,
+        sensing ? std::optional<EstimateSample>(sensing->Sample(state)) : std::nullopt};
+    for (FlightObserver* observer : parts_.observers) {
+      observer->ControlStep(sample, !takeoff_.lifting());
+    }
   }
 
   // The physics step, in the air; then what MuJoCo says of it (a warning, a contact).
   bool Physics(const State& state) {
     const State after = world_->Step(state);
-    metrics_.PhysicsStep(world_->inner().mixer.thrusts, world_->step(), state,
-                         world_->air().wind());
+    const PhysicsStepSample step{state, after, world_->inner().mixer.thrusts, world_->air().wind(),
+                                 world_->step()};
+    for (FlightObserver* observer : parts_.observers) observer->PhysicsStep(step);
     ++result_.steps;
-    metrics_.Moved(state, after);
     // a warning means MuJoCo changed or distrusts the state (it resets the data after a bad
     // acceleration): nothing after it can be trusted
     Simulation& sim = world_->sim();
@@ -261,15 +240,14 @@ class FlightRun {
     return true;
   }
 
-  const FlightParams& params_;
   const FlightLoop& loop_;
+  const FlightParts& parts_;
   VehicleWorld* world_;
-  int divider_;  // physics steps per control step
+  Takeoff& takeoff_;
+  double goal_tolerance_;  // [m] a mission's goals ...
+  double goal_speed_;      // [m/s]
+  int divider_;            // physics steps per control step
   Setpoints setpoints_;
-  Vec3 goal_;
-  Takeoff takeoff_;
-  double nan_from_;
-  FlightMetrics metrics_;
   FlatOutput setpoint_;
   ControlCommand command_;
   std::vector<double> report_;
@@ -287,12 +265,22 @@ void CheckFlight(const FlightParams& params, const FlightLoop& loop) {
 }  // namespace
 
 FlightResult FlyTrajectory(const Reference& reference, const FlightParams& params,
-                           const FlightLoop& loop, VehicleWorld* world) {
+                           const FlightLoop& loop, const FlightParts& parts) {
   CheckFlight(params, loop);
-  FlightRun run(reference, params, loop, world);
+  if (parts.world == nullptr || parts.takeoff == nullptr) {
+    throw std::invalid_argument("FlyTrajectory: no world or no take-off");
+  }
+  FlightRun run(reference, params, loop, parts);
   for (long k = 0; run.Step(k); ++k) {
   }
   return run.Finish();
+}
+
+FlightResult FlyTrajectory(const Reference& reference, const FlightParams& params,
+                           const FlightLoop& loop, VehicleWorld* world) {
+  CheckFlight(params, loop);
+  StandardParts parts(reference, params, loop, world);
+  return FlyTrajectory(reference, params, loop, parts.parts());
 }
 
 FlightResult FlyTrajectory(const Reference& reference, const FlightParams& params,

@@ -183,7 +183,9 @@ FlightResult FlyTrajectory(const Reference& reference, const FlightParams& param
 
 // The same in a world already made (its air, sensors and estimator going on from where they
 // are); the loop's own wind, drag, sensors, seed and inner-loop parameters are the world's, not
-// read again. The flight's clock starts at the world's time now.
+// read again. The flight's clock starts at the world's time now. The take-off, the rules that
+// end the flight and the observers are the standard ones (StandardParts); to fly other parts,
+// see FlyTrajectory(..., FlightParts) in mission/flight_parts.h.
 FlightResult FlyTrajectory(const Reference& reference, const FlightParams& params,
                            const FlightLoop& loop, VehicleWorld* world);
 

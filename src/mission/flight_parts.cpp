@@ -150,40 +150,37 @@ FlightMetrics::FlightMetrics(const QuadParams& vehicle)
       min_thrust_(vehicle.MinRotorThrust()),
       min_clearance_(std::numeric_limits<double>::infinity()) {}
 
-void FlightMetrics::ControlStep(double error, bool tracking, double clearance,
-                                std::optional<double> estimate_error) {
+void FlightMetrics::ControlStep(const TelemetrySample& sample, bool tracking) {
   if (tracking) {
     // tracking from when the trajectory's clock starts: the take-off is reported on its own
+    const double error = sample.position_error;
     squared_error_sum_ += error * error;
     ++samples_;
     max_error_ = std::max(max_error_, error);
   }
-  min_clearance_ = std::min(min_clearance_, clearance);
-  if (estimate_error) {
-    const double e = *estimate_error;
+  min_clearance_ = std::min(min_clearance_, sample.clearance);
+  if (sample.estimate) {
+    const double e = (sample.estimate->estimate.p_W - sample.state.p_W).norm();
     estimated_ = true;
     estimate_squared_sum_ += e * e;
     estimate_max_error_ = std::max(estimate_max_error_, e);
   }
 }
 
-void FlightMetrics::PhysicsStep(const Vec4& commanded, double step, const State& state,
-                                const Vec3& wind_W) {
+void FlightMetrics::PhysicsStep(const PhysicsStepSample& step) {
   // how hard the rotors worked, every physics step
+  const Vec4& commanded = step.commanded;
   peak_rotor_fraction_ = std::max(peak_rotor_fraction_, commanded.maxCoeff() / max_thrust_);
   if ((commanded.array() >= max_thrust_ - 1e-9).any() ||
       (commanded.array() <= min_thrust_ + 1e-9).any()) {
-    saturated_time_ += step;
+    saturated_time_ += step.step;
   }
-  top_speed_ = std::max(top_speed_, state.v_W.norm());
-  max_wind_ = std::max(max_wind_, wind_W.norm());
+  top_speed_ = std::max(top_speed_, step.before.v_W.norm());
+  max_wind_ = std::max(max_wind_, step.wind_W.norm());
+  distance_ += (step.after.p_W - step.before.p_W).norm();
 }
 
-void FlightMetrics::Moved(const State& before, const State& after) {
-  distance_ += (after.p_W - before.p_W).norm();
-}
-
-void FlightMetrics::Fill(FlightResult* result) const {
+void FlightMetrics::Finish(FlightResult* result) const {
   result->rms_error = samples_ > 0 ? std::sqrt(squared_error_sum_ / samples_) : 0.0;
   result->max_error = max_error_;
   result->min_clearance = min_clearance_;
@@ -196,6 +193,76 @@ void FlightMetrics::Fill(FlightResult* result) const {
   result->top_speed = top_speed_;
   result->distance = distance_;
   result->max_wind = max_wind_;
+}
+
+std::optional<FlightStatus> TerminateRule::Judge(const FlightMoment& now) {
+  if (now.control_step && terminate_(now.t, now.state)) return FlightStatus::kTerminated;
+  return std::nullopt;
+}
+
+std::optional<FlightStatus> FlyAwayRule::Judge(const FlightMoment& now) {
+  if (now.error > distance_) return FlightStatus::kFlyAway;
+  return std::nullopt;
+}
+
+ArrivalRule::ArrivalRule(const FlightParams& params, const Completion& completion, const Vec3& end,
+                         size_t goals)
+    : tolerance_(params.goal_tolerance),
+      speed_(params.goal_speed),
+      completion_(completion),
+      end_(end),
+      goals_(goals) {}
+
+std::optional<FlightStatus> ArrivalRule::Judge(const FlightMoment& now) {
+  if (now.takeoff.lifting()) return std::nullopt;
+  const State& s = now.state;
+  bool complete = false;
+  switch (completion_.kind) {
+    case Completion::Kind::kNever:
+      break;
+    case Completion::Kind::kAtEnd:
+      complete =
+          now.tr >= now.duration && (s.p_W - end_).norm() < tolerance_ && s.v_W.norm() < speed_;
+      break;
+    case Completion::Kind::kAtPoint:
+      complete = now.tr >= completion_.from &&
+                 (s.p_W - completion_.point).norm() < completion_.point_tolerance &&
+                 s.v_W.norm() <= completion_.point_speed;
+      break;
+  }
+  if (!complete) return std::nullopt;
+  return now.goals_reached == goals_ ? FlightStatus::kReachedGoal : FlightStatus::kMissedGoal;
+}
+
+std::optional<FlightStatus> TimeLimitRule::Judge(const FlightMoment& now) {
+  const double end_time = now.duration + settle_time_;
+  if (now.t >= end_time + now.takeoff.time()) return FlightStatus::kTimeout;
+  return std::nullopt;
+}
+
+StandardParts::StandardParts(const Reference& reference, const FlightParams& params,
+                             const FlightLoop& loop, VehicleWorld* world)
+    : world_(world),
+      takeoff_(reference.evaluate(0.0, kPosition), world->Truth(),
+               !world->sim().VehicleContacts().empty()),
+      fly_away_(params.flyaway_distance),
+      arrival_(params, loop.completion, reference.evaluate(reference.duration, kPosition),
+               loop.goals.size()),
+      time_limit_(params.settle_time),
+      metrics_(*loop.vehicle) {
+  if (loop.terminate) terminate_.emplace(loop.terminate);
+  if (loop.telemetry) telemetry_.emplace(loop.telemetry);
+}
+
+FlightParts StandardParts::parts() {
+  FlightParts parts;
+  parts.world = world_;
+  parts.takeoff = &takeoff_;
+  if (terminate_) parts.rules.push_back(&*terminate_);
+  parts.rules.insert(parts.rules.end(), {&fly_away_, &arrival_, &time_limit_});
+  parts.observers.push_back(&metrics_);
+  if (telemetry_) parts.observers.push_back(&*telemetry_);
+  return parts;
 }
 
 }  // namespace aerobox

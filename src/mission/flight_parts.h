@@ -7,6 +7,8 @@
 #include <functional>
 #include <optional>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include "common/flat_output.h"
 #include "common/state.h"
@@ -156,21 +158,39 @@ class VehicleWorld {
   InnerOutput inner_out_;
 };
 
+// What an observer sees of one physics step: the state before and after it, the rotor
+// commands it flew [N], the wind at the vehicle [m/s] and its length [s].
+struct PhysicsStepSample {
+  const State& before;
+  const State& after;
+  const Vec4& commanded;
+  const Vec3& wind_W;
+  double step;
+};
+
+// Something that watches a flight without changing it (the metrics, the telemetry, a user's
+// recorder): each control step's telemetry row, each physics step, and the result at the end.
+class FlightObserver {
+ public:
+  virtual ~FlightObserver() = default;
+  // At a control step; `tracking`: the reference's clock runs (the take-off is over).
+  virtual void ControlStep(const TelemetrySample& /*sample*/, bool /*tracking*/) {}
+  virtual void PhysicsStep(const PhysicsStepSample& /*step*/) {}
+  // At the end: the observer's numbers into the result.
+  virtual void Finish(FlightResult* /*result*/) const {}
+};
+
 // The numbers of a flight, kept as it goes: tracking from the reference's start, clearance, the
 // estimate's error, how hard the rotors worked, speed, distance and the strongest wind.
-class FlightMetrics {
+class FlightMetrics : public FlightObserver {
  public:
   explicit FlightMetrics(const QuadParams& vehicle);
-  // At a control step: `error` [m] counts for tracking when `tracking` (the reference's clock
-  // runs); `clearance` [m]; the estimate's error [m] when there is an estimate.
-  void ControlStep(double error, bool tracking, double clearance,
-                   std::optional<double> estimate_error);
-  // Before each physics step of `step` [s]: the rotor commands [N], the speed, the wind [m/s].
-  void PhysicsStep(const Vec4& commanded, double step, const State& state, const Vec3& wind_W);
-  // After it: the distance flown.
-  void Moved(const State& before, const State& after);
-  // Into `result`: its tracking, clearance, estimate, effort, speed, distance and wind fields.
-  void Fill(FlightResult* result) const;
+  // The tracking error counts while `tracking`; the clearance and the estimate's error always.
+  void ControlStep(const TelemetrySample& sample, bool tracking) override;
+  // The rotors' work, the speed, the wind and the distance flown.
+  void PhysicsStep(const PhysicsStepSample& step) override;
+  // Its tracking, clearance, estimate, effort, speed, distance and wind fields.
+  void Finish(FlightResult* result) const override;
 
  private:
   double max_thrust_;
@@ -188,5 +208,124 @@ class FlightMetrics {
   double distance_ = 0.0;
   double max_wind_ = 0.0;
 };
+
+// A function called with each control step's telemetry row (FlightLoop::telemetry).
+class TelemetryCallback : public FlightObserver {
+ public:
+  explicit TelemetryCallback(std::function<void(const TelemetrySample&)> call)
+      : call_(std::move(call)) {}
+  void ControlStep(const TelemetrySample& sample, bool) override { call_(sample); }
+
+ private:
+  std::function<void(const TelemetrySample&)> call_;
+};
+
+// Where a flight stands when the rules judge it: after the control and inner-loop step at
+// flight time `t` [s], the reference's own time `tr` [s].
+struct FlightMoment {
+  double t;
+  double tr;
+  const State& state;  // the truth
+  double error;        // [m] from the setpoint
+  bool control_step;   // the controller ran at this step
+  const Takeoff& takeoff;
+  double duration;       // [s] of the reference flown now
+  size_t goals_reached;  // a mission's goals before the last
+};
+
+// A rule that ends a flight (termination): the first of a flight's rules to give a status ends
+// it. The built-in ones follow; a user's is one more class.
+class FlightRule {
+ public:
+  virtual ~FlightRule() = default;
+  virtual std::optional<FlightStatus> Judge(const FlightMoment& now) = 0;
+};
+
+// The loop's own rule at each control step (FlightLoop::terminate): kTerminated.
+class TerminateRule : public FlightRule {
+ public:
+  explicit TerminateRule(std::function<bool(double, const State&)> terminate)
+      : terminate_(std::move(terminate)) {}
+  std::optional<FlightStatus> Judge(const FlightMoment& now) override;
+
+ private:
+  std::function<bool(double, const State&)> terminate_;
+};
+
+// Further than FlightParams::flyaway_distance from the setpoint: kFlyAway.
+class FlyAwayRule : public FlightRule {
+ public:
+  explicit FlyAwayRule(double distance) : distance_(distance) {}
+  std::optional<FlightStatus> Judge(const FlightMoment& now) override;
+
+ private:
+  double distance_;  // [m]
+};
+
+// Complete (Completion) once the take-off is over: kReachedGoal when every goal of a mission
+// was reached in order, kMissedGoal otherwise.
+class ArrivalRule : public FlightRule {
+ public:
+  // `end`: the reference's end [m]; `goals`: how many goals the mission has before it.
+  ArrivalRule(const FlightParams& params, const Completion& completion, const Vec3& end,
+              size_t goals);
+  std::optional<FlightStatus> Judge(const FlightMoment& now) override;
+
+ private:
+  double tolerance_;  // [m] at the end
+  double speed_;      // [m/s]
+  Completion completion_;
+  Vec3 end_;
+  size_t goals_;
+};
+
+// Not arrived within the reference's duration and FlightParams::settle_time after the
+// take-off: kTimeout.
+class TimeLimitRule : public FlightRule {
+ public:
+  explicit TimeLimitRule(double settle_time) : settle_time_(settle_time) {}
+  std::optional<FlightStatus> Judge(const FlightMoment& now) override;
+
+ private:
+  double settle_time_;  // [s]
+};
+
+// The parts a flight is flown with, made by the caller (FlyTrajectory below): the vehicle's
+// world, its take-off, the rules that end it (asked in order) and its observers. None is owned.
+struct FlightParts {
+  VehicleWorld* world = nullptr;
+  Takeoff* takeoff = nullptr;
+  std::vector<FlightRule*> rules;
+  std::vector<FlightObserver*> observers;
+};
+
+// The built-in parts of a flight of `reference` in `world`, as FlightLoop and FlightParams ask:
+// the take-off from where the vehicle is, the loop's terminate rule, fly-away, arrival and the
+// time limit, the metrics and the loop's telemetry.
+class StandardParts {
+ public:
+  StandardParts(const Reference& reference, const FlightParams& params, const FlightLoop& loop,
+                VehicleWorld* world);
+  StandardParts(const StandardParts&) = delete;
+  StandardParts& operator=(const StandardParts&) = delete;
+  // Its parts; more rules or observers may be added to what it returns.
+  FlightParts parts();
+
+ private:
+  VehicleWorld* world_;
+  Takeoff takeoff_;
+  std::optional<TerminateRule> terminate_;
+  FlyAwayRule fly_away_;
+  ArrivalRule arrival_;
+  TimeLimitRule time_limit_;
+  FlightMetrics metrics_;
+  std::optional<TelemetryCallback> telemetry_;
+};
+
+// Flies `reference` with `loop`'s controller and goals through `parts`: the closed loop itself,
+// composing them a physics step at a time (the clock starts at the world's time now). Throws
+// std::invalid_argument for bad parameters.
+FlightResult FlyTrajectory(const Reference& reference, const FlightParams& params,
+                           const FlightLoop& loop, const FlightParts& parts);
 
 }  // namespace aerobox

@@ -1,0 +1,116 @@
+// The closed loop flies the parts it is given: a user's rule and observer join the built-in
+// ones, and the built-in ones can be left out, without a change to the loop.
+#include <doctest/doctest.h>
+
+#include <memory>
+
+#include "flight_test_util.h"
+#include "mission/flight_parts.h"
+
+namespace aerobox {
+namespace {
+
+using testing::FromFunction;
+using testing::RoomAt;
+
+// A climb of 2 m in 4 s from hover at 1 m.
+Reference Climb() {
+  return FromFunction(4.0, [](double t) { return Vec3(0, 0, 1.0 + 0.5 * t); });
+}
+
+// Ends the flight above a height [m] (a user's rule).
+class CeilingRule : public FlightRule {
+ public:
+  explicit CeilingRule(double z) : z_(z) {}
+  std::optional<FlightStatus> Judge(const FlightMoment& now) override {
+    if (now.state.p_W.z() > z_) return FlightStatus::kTerminated;
+    return std::nullopt;
+  }
+
+ private:
+  double z_;
+};
+
+// Counts what it sees (a user's observer) and adds to the result's steps what it counted.
+class Counter : public FlightObserver {
+ public:
+  void ControlStep(const TelemetrySample& sample, bool) override {
+    ++rows;
+    last_t = sample.t;
+  }
+  void PhysicsStep(const PhysicsStepSample& step) override {
+    ++steps;
+    CHECK(step.step == doctest::Approx(0.001));
+  }
+  void Finish(FlightResult* result) const override { result->message = "counted"; }
+  long rows = 0;
+  long steps = 0;
+  double last_t = 0.0;
+};
+
+struct Flyer {
+  QuadParams vehicle;
+  ControllerConfig config;
+  std::unique_ptr<Controller> controller = MakeController(config, vehicle);
+  Simulation sim = RoomAt(Vec3(0, 0, 1));
+  FlightLoop loop;
+  Flyer() {
+    loop.vehicle = &vehicle;
+    loop.controller = controller.get();
+    loop.control_rate = config.rate;
+    loop.inner = config.inner;
+  }
+};
+
+TEST_CASE("a user's rule and observer fly beside the built-in parts") {
+  Flyer f;
+  VehicleWorld world(f.loop, &f.sim);
+  FlightParams params;
+  StandardParts standard(Climb(), params, f.loop, &world);
+  FlightParts parts = standard.parts();
+  CeilingRule ceiling(2.0);
+  Counter counter;
+  parts.rules.insert(parts.rules.begin(), &ceiling);
+  parts.observers.push_back(&counter);
+  const FlightResult result = FlyTrajectory(Climb(), params, f.loop, parts);
+  CHECK(result.status == FlightStatus::kTerminated);
+  CHECK(result.time == doctest::Approx(2.0).epsilon(0.05));  // 2 m at 0.5 m/s
+  CHECK(counter.steps == result.steps);
+  CHECK(counter.rows == result.steps / 4 + 1);         // 250 Hz of 1000 Hz, the last step's row too
+  CHECK(result.time - counter.last_t < 0.004 + 1e-9);  // the rule judges every physics step
+  CHECK(result.message == "counted");
+  CHECK(result.distance == doctest::Approx(1.0).epsilon(0.05));  // the metrics observed too
+}
+
+TEST_CASE("without the built-in time limit, the flight ends by the user's rule") {
+  Flyer f;
+  VehicleWorld world(f.loop, &f.sim);
+  FlightParams params;
+  params.settle_time = 0.5;
+  f.loop.completion.kind = Completion::Kind::kNever;  // no arrival either
+  StandardParts standard(Climb(), params, f.loop, &world);
+  FlightParts parts = standard.parts();
+  // the standard rules: fly-away, arrival, the time limit (no terminate function given)
+  REQUIRE(parts.rules.size() == 3);
+  parts.rules.pop_back();
+  struct Late : FlightRule {
+    std::optional<FlightStatus> Judge(const FlightMoment& now) override {
+      if (now.t >= 6.0) return FlightStatus::kTimeout;
+      return std::nullopt;
+    }
+  } late;
+  parts.rules.push_back(&late);
+  const FlightResult result = FlyTrajectory(Climb(), params, f.loop, parts);
+  // the built-in limit would have ended it at 4.5 s
+  CHECK(result.status == FlightStatus::kTimeout);
+  CHECK(result.time == doctest::Approx(6.0).epsilon(0.001));
+}
+
+TEST_CASE("a flight without a world or a take-off is refused") {
+  Flyer f;
+  FlightParts parts;
+  CHECK_THROWS_AS(FlyTrajectory(Climb(), FlightParams(), f.loop, parts), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace aerobox
