@@ -15,6 +15,7 @@
 #include "bench/python_benchmark.h"
 #include "bench/render_benchmark.h"
 #include "bench/replanning_benchmark.h"
+#include "bench/rl_benchmark.h"
 #include "bench/robustness.h"
 #include "bench/solver_comparison.h"
 #include "bench/sweep_benchmark.h"
@@ -130,6 +131,11 @@ int RunBench(const std::string& sections, const std::string& scenes, const std::
     RunRotorPyBenchmark(out, size);
     out << "\n";
   }
+  if (wanted("rl")) {
+    out << "## Learning environments: steps per second against the bare physics\n\n" << std::flush;
+    RunRlBenchmark(out, size);
+    out << "\n";
+  }
   if (wanted("robustness")) {
     RobustnessParams params;
     std::istringstream list(maps);
@@ -204,7 +210,7 @@ int main(int argc, char** argv) {
   double bench_seconds = 1.0;
   app.add_option("--sections", bench_sections,
                  "all, or some of: "
-                 "trajectory,flight,render,speed,python,rotorpy,robustness,replanning,sweep,"
+                 "trajectory,flight,render,speed,python,rotorpy,rl,robustness,replanning,sweep,"
                  "city,planning")
       ->capture_default_str();
   app.add_option("--scenes", bench_scenes, "folder with the scenes")->capture_default_str();

@@ -15,6 +15,7 @@ enum class SeedStream : std::uint64_t {
   kInitialEstimate = 4,
   kUnknownBoxes = 5,
   kMotorNoise = 6,
+  kEnvironment = 7,  // a learning environment's random starts
 };
 
 // A seed for `stream` derived from `seed` (SplitMix64 over both: well mixed, and the same on

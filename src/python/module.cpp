@@ -25,6 +25,7 @@
 #include "outputs/report.h"
 #include "outputs/summary.h"
 #include "planning/path_simplify.h"
+#include "python/envs_binding.h"
 #include "python/seams.h"
 #include "scenario/scenario.h"
 #include "scene/scene_mjcf.h"
@@ -735,6 +736,7 @@ PYBIND11_MODULE(_aerobox, m) {
   m.doc() = "aerobox's compiled core; use the package `aerobox`";
   m.attr("__version__") = AEROBOX_VERSION;
   m.attr("mujoco_version") = mj_versionString();
+  BindEnvs(m);
 
   py::class_<FlightSetup, SetupPtr>(m, "Setup")
       .def_property_readonly("name", [](const FlightSetup& s) { return s.name; })

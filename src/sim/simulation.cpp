@@ -78,6 +78,16 @@ Simulation::Simulation(MjModelPtr model, const std::string& source) : model_(std
   mj_forward(model_.get(), data_.get());
 }
 
+Simulation Simulation::Clone() const {
+  return Simulation(MjModelPtr(mj_copyModel(nullptr, model_.get())), "a copy of the scene");
+}
+
+void Simulation::ResetData() {
+  mj_resetData(model_.get(), data_.get());
+  warnings_seen_.fill(0);
+  mj_forward(model_.get(), data_.get());
+}
+
 void Simulation::Step(const Vec4& thrust_commands) {
   for (int i = 0; i < kNumRotors; ++i) data_->ctrl[actuator_ids_[i]] = thrust_commands[i];
   mj_step(model_.get(), data_.get());
@@ -153,6 +163,17 @@ std::string Simulation::TakeNewWarnings() {
     text += mju_warningText(i, stat.lastinfo);
   }
   return text;
+}
+
+bool Simulation::VehicleTouches() const {
+  for (int i = 0; i < data_->ncon; ++i) {
+    const mjContact& contact = data_->contact[i];
+    if ((model_->geom_bodyid[contact.geom1] == body_id_) !=
+        (model_->geom_bodyid[contact.geom2] == body_id_)) {
+      return true;
+    }
+  }
+  return false;
 }
 
 std::vector<VehicleContact> Simulation::VehicleContacts() const {

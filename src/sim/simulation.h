@@ -55,6 +55,12 @@ class Simulation {
   // starts from them.
   void SetProducedThrusts(const Vec4& thrusts);
 
+  // A new simulation of a copy of this one's model, with fresh data (as loaded): many worlds of
+  // one scene without parsing it again.
+  Simulation Clone() const;
+  // Back to the data as loaded: time 0, the model's initial state, no contacts, no warnings.
+  void ResetData();
+
   State VehicleState() const;
   // Places the vehicle and recomputes derived quantities (mj_forward).
   void SetVehicleState(const State& state);
@@ -71,6 +77,8 @@ class Simulation {
 
   // Contacts the vehicle has in the current state.
   std::vector<VehicleContact> VehicleContacts() const;
+  // Whether it has any (VehicleContacts without their names: cheap enough for every step).
+  bool VehicleTouches() const;
 
   double time() const { return data_->time; }
   double timestep() const { return model_->opt.timestep; }

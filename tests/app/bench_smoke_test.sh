@@ -28,7 +28,7 @@ LD_PRELOAD="${AEROBOX_PYTHON_PRELOAD:-}" \
   "$aerobox" bench --smoke --city "$work/city.csv" > "$work/tables.md" 2> "$work/progress.txt" ||
   { cat "$work/tables.md" "$work/progress.txt"; echo "FAIL: aerobox bench --smoke failed"; exit 1; }
 for heading in "Minimum snap" "The video path" "Closed loop" "Flight time" "A Python controller" \
-  "RotorPy's Environment" "Robustness" "Replanning" "Sweep throughput" "City scale" "RRT\*"; do
+  "RotorPy's Environment" "Learning environments" "Robustness" "Replanning" "Sweep throughput" "City scale" "RRT\*"; do
   grep -q "^## $heading" "$work/tables.md" ||
     { cat "$work/tables.md"; echo "FAIL: no '$heading' section"; exit 1; }
 done
@@ -37,4 +37,4 @@ if grep -q "skipped" "$work/tables.md"; then
   echo "FAIL: a section was skipped"
   exit 1
 fi
-echo "bench smoke: all 11 sections ran"
+echo "bench smoke: all 12 sections ran"

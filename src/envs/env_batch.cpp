@@ -1,0 +1,81 @@
+#include "envs/env_batch.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "common/number_format.h"
+#include "map/map.h"
+#include "scene/scene_mjcf.h"
+
+namespace aerobox {
+
+std::string EnvSceneXml(const EnvParams& params) {
+  Map room;
+  room.name = "env_" + params.task;
+  const double r = params.bounds_radius + 1.0;
+  room.bounds = {Vec3(params.target.x() - r, params.target.y() - r, 0.0),
+                 Vec3(params.target.x() + r, params.target.y() + r, params.target.z() + r)};
+  SceneOptions options;
+  options.vehicle_position = params.target;
+  options.offscreen_width = 640;
+  options.offscreen_height = 480;
+  return BuildSceneMjcf(room, params.Vehicle(), options);
+}
+
+EnvBatch::EnvBatch(const EnvParams& params, int worlds, int threads)
+    : params_(params), pool_(std::max(1, std::min(threads, worlds))) {
+  if (worlds < 1)
+    throw std::invalid_argument("EnvBatch: at least one world, got " + std::to_string(worlds));
+  params_.Validate();
+  const Simulation first = Simulation::FromXml(EnvSceneXml(params_), "env");
+  for (int i = 0; i < worlds; ++i) {
+    worlds_.push_back(std::make_unique<EnvWorld>(params_, first.Clone()));
+  }
+  ended_.assign(static_cast<size_t>(worlds), 0);
+}
+
+void EnvBatch::Reset(const std::vector<std::optional<std::uint64_t>>& seeds, float* observations) {
+  const int d = params_.ObservationSize();
+  pool_.For(size(), [&](int begin, int end) {
+    for (int i = begin; i < end; ++i) {
+      const auto seed =
+          static_cast<size_t>(i) < seeds.size() ? seeds[static_cast<size_t>(i)] : std::nullopt;
+      worlds_[static_cast<size_t>(i)]->Reset(seed, observations + static_cast<long>(i) * d);
+      ended_[static_cast<size_t>(i)] = 0;
+    }
+  });
+}
+
+void EnvBatch::Step(const double* actions, float* observations, double* rewards,
+                    std::uint8_t* terminated, std::uint8_t* truncated, double* terms) {
+  const int k = params_.ActionSize(), d = params_.ObservationSize();
+  const int n_terms = static_cast<int>(RewardTermNames().size());
+  for (int i = 0; i < size(); ++i) {
+    for (int j = 0; j < k; ++j) {
+      const double a = actions[i * k + j];
+      if (!(a >= -1.0 && a <= 1.0)) {
+        throw std::invalid_argument("action[" + std::to_string(i) + "][" + std::to_string(j) +
+                                    "] = " + FormatNumber(a) + ": expected a number in [-1, 1]");
+      }
+    }
+  }
+  pool_.For(size(), [&](int begin, int end) {
+    for (int i = begin; i < end; ++i) {
+      EnvWorld& w = *worlds_[static_cast<size_t>(i)];
+      float* obs = observations + static_cast<long>(i) * d;
+      EnvStep step;
+      if (ended_[static_cast<size_t>(i)]) {
+        w.Reset(std::nullopt, obs);
+      } else {
+        step = w.Step(actions + static_cast<long>(i) * k, obs);
+      }
+      ended_[static_cast<size_t>(i)] = step.terminated || step.truncated;
+      rewards[i] = step.reward;
+      terminated[i] = step.terminated;
+      truncated[i] = step.truncated;
+      for (int j = 0; j < n_terms; ++j) terms[i * n_terms + j] = step.terms[static_cast<size_t>(j)];
+    }
+  });
+}
+
+}  // namespace aerobox

@@ -1,0 +1,50 @@
+// N worlds of one learning environment stepped in one call, in threads over blocks of worlds,
+// with Gymnasium 1.x's vector semantics (autoreset on the next step): the arrays in and out
+// are the Python module's numpy buffers, so no Python runs per world. World i seeded with s + i
+// gives exactly what a lone world seeded with s + i gives, whatever the number of threads.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/worker_pool.h"
+#include "envs/env_params.h"
+#include "envs/env_world.h"
+
+namespace aerobox {
+
+class EnvBatch {
+ public:
+  // `worlds` >= 1 of `params`' environment; `threads` >= 1 (the caller's included). Throws
+  // std::invalid_argument for bad parameters.
+  EnvBatch(const EnvParams& params, int worlds, int threads);
+
+  int size() const { return static_cast<int>(worlds_.size()); }
+  const EnvParams& params() const { return params_; }
+
+  // Every world anew; world i from seeds[i] when it has one. `observations`: size() x
+  // ObservationSize floats.
+  void Reset(const std::vector<std::optional<std::uint64_t>>& seeds, float* observations);
+  // One step of every world: `actions` size() x ActionSize, each finite and within [-1, 1]
+  // (else std::invalid_argument naming the world and the component, before any world steps).
+  // A world whose episode ended at the last step is reset instead (its action ignored, reward
+  // 0, neither flag set), from its own stream. `terms`: size() x 5 reward terms.
+  void Step(const double* actions, float* observations, double* rewards, std::uint8_t* terminated,
+            std::uint8_t* truncated, double* terms);
+
+  EnvWorld& world(int i) { return *worlds_[static_cast<size_t>(i)]; }
+
+ private:
+  EnvParams params_;
+  std::vector<std::unique_ptr<EnvWorld>> worlds_;
+  std::vector<std::uint8_t> ended_;  // the episode ended at the last step: reset at the next
+  WorkerPool pool_;
+};
+
+// The scene every world of `params` flies in: an empty room around the target, with the floor.
+std::string EnvSceneXml(const EnvParams& params);
+
+}  // namespace aerobox

@@ -1,0 +1,140 @@
+// The learning environments' core for aerobox.envs: an EnvBatch with numpy arrays in and out,
+// the GIL released while the worlds step.
+#include "python/envs_binding.h"
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "envs/env_batch.h"
+#include "python/py_params.h"
+#include "render/renderer.h"
+
+namespace py = pybind11;
+
+namespace aerobox {
+namespace {
+
+class EnvCore {
+ public:
+  EnvCore(const py::dict& kwargs, int worlds, int threads, std::string who) : who_(std::move(who)) {
+    EnvParams params;
+    ParamsFromKwargs(kwargs, who_, &params);
+    if (worlds < 1) throw py::value_error(who_ + ": num_envs must be at least 1");
+    try {
+      batch_ = std::make_unique<EnvBatch>(params, worlds, threads);
+    } catch (const std::invalid_argument& e) {
+      throw py::value_error(who_ + ": " + e.what());
+    }
+  }
+
+  int size() const { return batch_->size(); }
+  int observation_size() const { return batch_->params().ObservationSize(); }
+  int action_size() const { return batch_->params().ActionSize(); }
+
+  py::array_t<float> Reset(const std::vector<std::optional<std::uint64_t>>& seeds) {
+    py::array_t<float> obs({size(), observation_size()});
+    float* out = obs.mutable_data();
+    {
+      py::gil_scoped_release free;
+      batch_->Reset(seeds, out);
+    }
+    return obs;
+  }
+
+  py::tuple Step(const py::array_t<double, py::array::c_style | py::array::forcecast>& actions) {
+    if (actions.ndim() != 2 || actions.shape(0) != size() || actions.shape(1) != action_size()) {
+      throw py::value_error(who_ + ": step: the actions have shape " + Shape(actions) +
+                            ", expected (" + std::to_string(size()) + ", " +
+                            std::to_string(action_size()) + ")");
+    }
+    const int n = size();
+    const int n_terms = static_cast<int>(RewardTermNames().size());
+    py::array_t<float> obs({n, observation_size()});
+    py::array_t<double> rewards(n), terms({n, n_terms});
+    py::array_t<bool> terminated(n), truncated(n);
+    float* o = obs.mutable_data();
+    double* r = rewards.mutable_data();
+    double* t = terms.mutable_data();
+    auto* te = reinterpret_cast<std::uint8_t*>(terminated.mutable_data());
+    auto* tr = reinterpret_cast<std::uint8_t*>(truncated.mutable_data());
+    const double* a = actions.data();
+    try {
+      py::gil_scoped_release free;
+      batch_->Step(a, o, r, te, tr, t);
+    } catch (const std::invalid_argument& e) {
+      throw py::value_error(who_ + ": step: " + e.what());
+    }
+    return py::make_tuple(obs, rewards, terminated, truncated, terms);
+  }
+
+  // World i's picture from the chase camera, (height, width, 3) uint8.
+  py::array_t<std::uint8_t> Render(int i, int width, int height) {
+    if (i < 0 || i >= size())
+      throw py::index_error(who_ + ": render: no world " + std::to_string(i));
+    if (!renderer_ || rendered_ != i) {
+      renderer_.reset();
+      renderer_ = std::make_unique<Renderer>(&batch_->world(i).sim(),
+                                             RenderSettings(width, height, Quality::kFast));
+      rendered_ = i;
+    }
+    Overlay overlay;
+    overlay.goal = batch_->params().target;
+    Image image;
+    renderer_->Render(CameraSpec{}, overlay, &image);
+    py::array_t<std::uint8_t> out({image.height, image.width, 3});
+    std::copy(image.rgb.begin(), image.rgb.end(), out.mutable_data());
+    return out;
+  }
+
+ private:
+  static std::string Shape(const py::array& a) {
+    std::string s = "(";
+    for (py::ssize_t i = 0; i < a.ndim(); ++i) {
+      s += (i ? ", " : "") + std::to_string(a.shape(i));
+    }
+    return s + (a.ndim() == 1 ? ",)" : ")");
+  }
+
+  std::string who_;
+  std::unique_ptr<EnvBatch> batch_;
+  std::unique_ptr<Renderer> renderer_;
+  int rendered_ = -1;
+};
+
+// The parameters' reference (key, unit, default, range, meaning), for the documentation.
+py::list EnvKeys() {
+  py::list rows;
+  for (const KeyRow& row : KeyRows<EnvParams>("")) {
+    rows.append(py::make_tuple(row.key, row.unit, row.value, row.range, row.meaning));
+  }
+  return rows;
+}
+
+}  // namespace
+
+void BindEnvs(py::module_& m) {
+  py::class_<EnvCore>(m, "EnvCore")
+      .def(py::init<const py::dict&, int, int, std::string>(), py::arg("params"), py::arg("worlds"),
+           py::arg("threads"), py::arg("who"))
+      .def_property_readonly("size", &EnvCore::size)
+      .def_property_readonly("observation_size", &EnvCore::observation_size)
+      .def_property_readonly("action_size", &EnvCore::action_size)
+      .def("reset", &EnvCore::Reset, py::arg("seeds"))
+      .def("step", &EnvCore::Step, py::arg("actions"))
+      .def("render", &EnvCore::Render, py::arg("world"), py::arg("width"), py::arg("height"));
+  m.def("env_keys", &EnvKeys);
+  m.def("env_observation_names", [](const py::dict& kwargs) {
+    EnvParams params;
+    ParamsFromKwargs(kwargs, "observation names", &params);
+    return params.ObservationNames();
+  });
+  m.def("env_reward_terms", [] { return RewardTermNames(); });
+}
+
+}  // namespace aerobox

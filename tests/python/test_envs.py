@@ -1,0 +1,249 @@
+"""aerobox.envs: Gymnasium's own checker, the vector environment against lone ones, a scripted
+policy that hovers and a random one that does not, and every bad input. Run with the project
+environment's python (.venv: Gymnasium from PyPI)."""
+
+import subprocess
+import sys
+import unittest
+import warnings
+
+import gymnasium as gym
+import numpy as np
+from gymnasium.utils.env_checker import check_env
+
+import aerobox.envs
+from aerobox.envs import HoverEnv, HoverVectorEnv
+
+G = 9.81
+
+
+def quiet_check(env):
+    with warnings.catch_warnings():
+        # the unbounded velocity and rate components: Gymnasium warns of any infinite bound
+        warnings.simplefilter("error")
+        warnings.filterwarnings("ignore", message=".*Box observation space (minimum|maximum)")
+        check_env(env)
+
+
+class Checker(unittest.TestCase):
+    def test_gymnasium_s_checker_passes_every_action_and_attitude(self):
+        for action in ("thrusts", "ctbm", "ctbr", "ctatt"):
+            for attitude in ("matrix", "quaternion"):
+                with self.subTest(action=action, attitude=attitude):
+                    env = gym.make(aerobox.envs.HOVER, action=action, attitude=attitude)
+                    quiet_check(env.unwrapped)
+                    size = 6 + (9 if attitude == "matrix" else 4) + 3 + 4
+                    self.assertEqual(env.observation_space.shape, (size,))
+                    self.assertEqual(len(env.unwrapped.observation_names), size)
+
+    def test_the_observation_is_what_the_docs_say(self):
+        env = HoverEnv(attitude="quaternion", target=[1.0, 2.0, 3.0])
+        obs, _ = env.reset(seed=4)
+        names = env.observation_names
+        self.assertEqual(names[:6], ["dx", "dy", "dz", "vx", "vy", "vz"])
+        self.assertEqual(names[6:10], ["qw", "qx", "qy", "qz"])
+        self.assertGreaterEqual(obs[6], 0.0)  # w >= 0
+        self.assertAlmostEqual(float(np.linalg.norm(obs[6:10])), 1.0, places=5)
+        self.assertLessEqual(np.linalg.norm(obs[:3]), 1.0)  # within start_radius
+        np.testing.assert_array_equal(obs[-4:], 0.0)  # no action yet
+        a = np.array([0.1, -0.2, 0.3, -0.4], np.float32)
+        obs, reward, _, _, info = env.step(a)
+        np.testing.assert_array_equal(obs[-4:], a)
+        self.assertEqual(list(info), ["alive", "position", "velocity", "rate", "action"])
+        self.assertAlmostEqual(reward, sum(info.values()), places=12)
+        self.assertAlmostEqual(info["action"], -0.01 * float(np.sum(a.astype(float)**2)), 9)
+        self.assertAlmostEqual(info["position"], -float(np.linalg.norm(obs[:3])), places=6)
+
+    def test_render_gives_a_picture(self):
+        env = gym.make(aerobox.envs.HOVER, render_mode="rgb_array", width=160, height=120)
+        env.reset(seed=1)
+        frame = env.render()
+        self.assertEqual(frame.shape, (120, 160, 3))
+        self.assertEqual(frame.dtype, np.uint8)
+        self.assertGreater(frame.std(), 5.0)  # not a blank picture
+
+
+def run_single(seed, actions, **params):
+    """A lone environment's rows for `actions` (steps x 4), resetting (no seed) when an
+    episode ends, as a vector world does on the next step."""
+    env = HoverEnv(**params)
+    obs, _ = env.reset(seed=seed)
+    rows, ended = [], False
+    for a in actions:
+        if ended:
+            obs, _ = env.reset()
+            rows.append((obs, 0.0, False, False))
+            ended = False
+            continue
+        obs, reward, terminated, truncated, _ = env.step(a)
+        rows.append((obs, reward, terminated, truncated))
+        ended = terminated or truncated
+    return rows
+
+
+class Vector(unittest.TestCase):
+    PARAMS = dict(episode_time=0.8, start_radius=1.2, start_tilt=1.0)  # many episodes
+
+    def actions(self, n, steps):
+        # thrust mostly low: some fall to the floor
+        a = np.random.default_rng(7).uniform(-1.0, 1.0, (steps, n, 4))
+        a[..., 0] = np.clip(a[..., 0] - 0.5, -1, 1)
+        return a
+
+    def run_vector(self, n, seed, actions, threads):
+        envs = gym.make_vec(aerobox.envs.HOVER, num_envs=n, threads=threads, **self.PARAMS)
+        self.assertIsInstance(envs, HoverVectorEnv)
+        obs, _ = envs.reset(seed=seed)
+        rows = []
+        for a in actions:
+            rows.append(envs.step(a)[:4])
+        return obs, rows
+
+    def test_world_i_is_a_lone_environment_seeded_s_plus_i(self):
+        n, seed, steps = 4, 11, 240
+        actions = self.actions(n, steps)
+        _, rows = self.run_vector(n, seed, actions, threads=2)
+        ends = sum(int(np.sum(r[2] | r[3])) for r in rows)
+        self.assertGreater(ends, 8)  # episodes ended and were reset along the way
+        self.assertTrue(any(np.any(r[2]) for r in rows))  # some crashed, too
+        for i in range(n):
+            single = run_single(seed + i, actions[:, i], **self.PARAMS)
+            for k, (mine, theirs) in enumerate(zip(single, rows)):
+                np.testing.assert_array_equal(mine[0], theirs[0][i], err_msg=f"world {i} step {k}")
+                self.assertEqual(mine[1], theirs[1][i])
+                self.assertEqual((mine[2], mine[3]), (theirs[2][i], theirs[3][i]))
+
+    def test_the_number_of_threads_and_a_busy_machine_change_nothing(self):
+        n, steps = 9, 120
+        actions = self.actions(n, steps)
+        busy = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(2)]
+        try:
+            one = self.run_vector(n, 5, actions, threads=1)
+            three = self.run_vector(n, 5, actions, threads=3)
+        finally:
+            for p in busy:
+                p.kill()
+                p.wait()
+        np.testing.assert_array_equal(one[0], three[0])
+        for a, b in zip(one[1], three[1]):
+            for x, y in zip(a, b):
+                np.testing.assert_array_equal(x, y)
+
+    def test_spaces_and_seeds(self):
+        envs = HoverVectorEnv(num_envs=3)
+        self.assertEqual(envs.action_space.shape, (3, 4))
+        self.assertEqual(envs.observation_space.shape, (3, 22))
+        a, _ = envs.reset(seed=[4, 5, 6])
+        b, _ = envs.reset(seed=4)
+        np.testing.assert_array_equal(a, b)
+        c, _ = envs.reset()  # goes on: new starts
+        self.assertFalse(np.array_equal(b, c))
+        obs, rewards, terminated, truncated, infos = envs.step(np.zeros((3, 4), np.float32))
+        self.assertEqual((obs.dtype, rewards.shape, terminated.dtype), (np.float32, (3,), bool))
+        self.assertEqual(infos["position"].shape, (3,))
+        self.assertTrue(infos["_position"].all())
+
+
+def hover_policy(obs, action="ctbr", mass=0.03, thrust_max=0.144):
+    """A scripted hover from the observation alone (matrix attitude): a PD on the position
+    gives the acceleration, its direction the body z axis, the error to it the body rates (or
+    the attitude), each scaled into the action's [-1, 1] as the docs say."""
+    d, v, R, w = obs[:3], obs[3:6], obs[6:15].reshape(3, 3).astype(float), obs[15:18]
+    acc = -4.0 * d - 3.0 * v + np.array([0, 0, G])
+    z_b = R[:, 2]
+    thrust = mass * float(acc @ z_b)
+    a0 = np.clip(2.0 * thrust / (4 * thrust_max) - 1.0, -1, 1)
+    z_des = acc / np.linalg.norm(acc)
+    if action == "ctbr":
+        err = R.T @ np.cross(z_b, z_des)  # the tilt to remove, in the body frame
+        rates = 8.0 * err
+        return np.array([a0, *(np.clip(rates / 10.0, -1, 1))], np.float32)
+    # R_z(yaw) R_y(pitch) R_x(roll) puts the body z axis at R_z(yaw) (cos r sin p, -sin r, ...)
+    yaw = np.arctan2(R[1, 0], R[0, 0])
+    c, s = np.cos(yaw), np.sin(yaw)
+    z = np.array([c * z_des[0] + s * z_des[1], -s * z_des[0] + c * z_des[1], z_des[2]])
+    roll = np.arcsin(np.clip(-z[1], -1, 1))
+    pitch = np.arctan2(z[0], z[2])
+    return np.array([a0, np.clip(roll / 0.6, -1, 1), np.clip(pitch / 0.6, -1, 1), yaw / np.pi],
+                    np.float32)
+
+
+class Policies(unittest.TestCase):
+    def fly(self, policy, seed, action):
+        env = HoverEnv(action=action)
+        obs, _ = env.reset(seed=seed)
+        distances = []
+        for _ in range(1000):  # 10 s
+            obs, _, terminated, truncated, _ = env.step(policy(obs))
+            distances.append(float(np.linalg.norm(obs[:3])))
+            if terminated or truncated:
+                break
+        return terminated, truncated, distances
+
+    def test_a_scripted_policy_hovers_and_a_random_one_does_not(self):
+        for action in ("ctbr", "ctatt"):
+            for seed in range(5):
+                with self.subTest(action=action, seed=seed):
+                    terminated, truncated, d = self.fly(
+                        lambda o: hover_policy(o, action), seed, action)
+                    self.assertFalse(terminated)
+                    self.assertTrue(truncated)
+                    self.assertLess(max(d[500:]), 0.05)  # held within 5 cm from 5 s on
+        rng = np.random.default_rng(0)
+        for seed in range(5):
+            terminated, _, d = self.fly(lambda o: rng.uniform(-1, 1, 4), seed, "ctbr")
+            self.assertTrue(terminated)
+            self.assertLess(len(d), 300)
+
+
+class BadInputs(unittest.TestCase):
+    def test_each_names_the_environment_the_field_and_the_value(self):
+        cases = [
+            (dict(episode_tim=3), TypeError, r"aerobox/Hover-v0: unknown argument 'episode_tim'; "
+                                             r"did you mean 'episode_time'\?"),
+            (dict(episode_time=-1), ValueError,
+             r"argument 'episode_time' = -1 s: expected 0.01 to 3600"),
+            (dict(action="motors"), ValueError, r"argument 'action' = 'motors': expected"),
+            (dict(target=[0, 0]), ValueError, r"argument 'target' .* expected three numbers"),
+            (dict(control_rate=300), ValueError, r"control_rate 300.* must divide"),
+            (dict(target=[0, 0, 0.5]), ValueError, r"target's height"),
+        ]
+        for params, error, pattern in cases:
+            with self.subTest(params=params):
+                with self.assertRaisesRegex(error, pattern):
+                    HoverEnv(**params)
+        with self.assertRaisesRegex(ValueError, "num_envs 0"):
+            HoverVectorEnv(num_envs=0)
+
+    def test_bad_actions_seeds_and_order(self):
+        env = HoverEnv()
+        with self.assertRaisesRegex(gym.error.ResetNeeded, "step before reset"):
+            env.step(np.zeros(4))
+        env.reset(seed=1)
+        with self.assertRaisesRegex(ValueError, r"the action has shape \(3,\), expected \(4,\)"):
+            env.step(np.zeros(3))
+        with self.assertRaisesRegex(ValueError, r"action\[0\]\[2\] = nan: expected a number in"):
+            env.step([0, 0, np.nan, 0])
+        with self.assertRaisesRegex(ValueError, r"action\[0\]\[0\] = 1.5"):
+            env.step([1.5, 0, 0, 0])
+        with self.assertRaisesRegex(ValueError, r"options \{'mass': 1\}"):
+            env.reset(options={"mass": 1})
+        with self.assertRaisesRegex(ValueError, r"seed -1: expected an integer"):
+            env.reset(seed=-1)
+        envs = HoverVectorEnv(num_envs=2)
+        envs.reset(seed=0)
+        with self.assertRaisesRegex(ValueError, r"actions have shape \(4,\), expected \(2, 4\)"):
+            envs.step(np.zeros(4))
+        with self.assertRaisesRegex(ValueError, r"action\[1\]\[3\] = inf"):
+            envs.step([[0, 0, 0, 0], [0, 0, 0, np.inf]])
+        # an episode that ended must be reset
+        env = HoverEnv(episode_time=0.02)
+        env.reset(seed=1)
+        env.step(np.zeros(4))
+        env.step(np.zeros(4))
+        with self.assertRaisesRegex(gym.error.ResetNeeded, "the episode has ended"):
+            env.step(np.zeros(4))
+
+
+if __name__ == "__main__":
+    unittest.main()
