@@ -46,6 +46,22 @@ void EnvBatch::Reset(const std::vector<std::optional<std::uint64_t>>& seeds, flo
   });
 }
 
+void EnvBatch::ResetSome(const std::vector<int>& indices, float* observations) {
+  const int d = params_.ObservationSize();
+  for (int i : indices) {
+    if (i < 0 || i >= size()) {
+      throw std::out_of_range("world " + std::to_string(i) + " of " + std::to_string(size()));
+    }
+  }
+  pool_.For(static_cast<int>(indices.size()), [&](int begin, int end) {
+    for (int j = begin; j < end; ++j) {
+      const auto i = static_cast<size_t>(indices[static_cast<size_t>(j)]);
+      worlds_[i]->Reset(std::nullopt, observations + static_cast<long>(j) * d);
+      ended_[i] = 0;
+    }
+  });
+}
+
 void EnvBatch::Step(const double* actions, float* observations, double* rewards,
                     std::uint8_t* terminated, std::uint8_t* truncated, double* terms) {
   const int k = params_.ActionSize(), d = params_.ObservationSize();

@@ -28,6 +28,11 @@ class EnvBatch {
   // Every world anew; world i from seeds[i] when it has one. `observations`: size() x
   // ObservationSize floats.
   void Reset(const std::vector<std::optional<std::uint64_t>>& seeds, float* observations);
+  // The worlds `indices` anew, each going on from its own stream (as an autoreset does); their
+  // observations into `observations` (indices.size() x ObservationSize floats), in that order.
+  // For the same-step autoreset of other vector APIs (stable-baselines3's). Throws
+  // std::out_of_range for an index outside the batch.
+  void ResetSome(const std::vector<int>& indices, float* observations);
   // One step of every world: `actions` size() x ActionSize, each finite and within [-1, 1]
   // (else std::invalid_argument naming the world and the component, before any world steps).
   // A world whose episode ended at the last step is reset instead (its action ignored, reward

@@ -2,8 +2,10 @@
 
 #include <pybind11/embed.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <string>
 
 #include "common/error.h"
 #include "python/seams.h"
@@ -14,6 +16,19 @@ namespace {
 namespace py = pybind11;
 namespace fs = std::filesystem;
 using python::CommandChoice;
+
+// The packages of the virtual environment the user activated (its activate script sets
+// VIRTUAL_ENV), as its own python sees them, when it is of this interpreter's version: a
+// --controller module may import what the user installed there with pip.
+void AddActiveVirtualEnvironment() {
+  const char* venv = std::getenv("VIRTUAL_ENV");
+  if (venv == nullptr || *venv == '\0') return;
+  const py::object version = py::module_::import("sys").attr("version_info");
+  const std::string python = "python" + std::to_string(version.attr("major").cast<int>()) + "." +
+                             std::to_string(version.attr("minor").cast<int>());
+  const fs::path packages = fs::path(venv) / "lib" / python / "site-packages";
+  if (fs::is_directory(packages)) py::module_::import("site").attr("addsitedir")(packages.string());
+}
 
 void StartInterpreter() {
   if (Py_IsInitialized()) return;
@@ -28,6 +43,7 @@ void StartInterpreter() {
     if (fs::exists(dir / "aerobox" / "__init__.py"))
       path.insert(0, dir.lexically_normal().string());
   }
+  AddActiveVirtualEnvironment();
 }
 
 SourceLocation Where(const std::string& spec) { return {spec.substr(0, spec.rfind(':')), 0}; }

@@ -13,6 +13,7 @@
 
 #include "envs/env_batch.h"
 #include "python/py_params.h"
+#include "python/seams.h"
 #include "render/renderer.h"
 
 namespace py = pybind11;
@@ -36,6 +37,8 @@ class EnvCore {
   int size() const { return batch_->size(); }
   int observation_size() const { return batch_->params().ObservationSize(); }
   int action_size() const { return batch_->params().ActionSize(); }
+  // The vehicle as RotorPy's quad_params dict (what a controller flying the policy needs).
+  py::dict quad_params() const { return python::VehicleDict(batch_->params().Vehicle()); }
 
   py::array_t<float> Reset(const std::vector<std::optional<std::uint64_t>>& seeds) {
     py::array_t<float> obs({size(), observation_size()});
@@ -43,6 +46,18 @@ class EnvCore {
     {
       py::gil_scoped_release free;
       batch_->Reset(seeds, out);
+    }
+    return obs;
+  }
+
+  py::array_t<float> ResetSome(const std::vector<int>& indices) {
+    py::array_t<float> obs({static_cast<int>(indices.size()), observation_size()});
+    float* out = obs.mutable_data();
+    try {
+      py::gil_scoped_release free;
+      batch_->ResetSome(indices, out);
+    } catch (const std::out_of_range& e) {
+      throw py::index_error(who_ + ": reset: " + e.what());
     }
     return obs;
   }
@@ -125,7 +140,9 @@ void BindEnvs(py::module_& m) {
       .def_property_readonly("size", &EnvCore::size)
       .def_property_readonly("observation_size", &EnvCore::observation_size)
       .def_property_readonly("action_size", &EnvCore::action_size)
+      .def_property_readonly("quad_params", &EnvCore::quad_params)
       .def("reset", &EnvCore::Reset, py::arg("seeds"))
+      .def("reset_some", &EnvCore::ResetSome, py::arg("worlds"))
       .def("step", &EnvCore::Step, py::arg("actions"))
       .def("render", &EnvCore::Render, py::arg("world"), py::arg("width"), py::arg("height"));
   m.def("env_keys", &EnvKeys);

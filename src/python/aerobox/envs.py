@@ -92,6 +92,7 @@ class HoverEnv(gym.Env):
         self.observation_names, self.observation_space, self.action_space = \
             _spaces(params, self._core)
         self.reward_terms = _aerobox.env_reward_terms()
+        self.quad_params = self._core.quad_params  # the vehicle, as RotorPy's dict
         self.render_mode, self._size = render_mode, (int(width), int(height))
         self._seeded = False
         self._ended = None  # None: never reset
