@@ -10,6 +10,10 @@ struct State {
   Vec3 v_W = Vec3::Zero();       // velocity in the world frame [m/s]
   Quat q_WB = Quat::Identity();  // attitude: rotates body vectors into the world
   Vec3 w_B = Vec3::Zero();       // angular velocity in the body frame [rad/s]
+
+  bool AllFinite() const {
+    return p_W.allFinite() && v_W.allFinite() && q_WB.coeffs().allFinite() && w_B.allFinite();
+  }
 };
 
 // MuJoCo stores quaternions as (w, x, y, z); Eigen's constructor takes the same order but its

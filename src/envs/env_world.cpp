@@ -10,10 +10,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-bool Finite(const State& s) {
-  return s.p_W.allFinite() && s.v_W.allFinite() && s.q_WB.coeffs().allFinite() && s.w_B.allFinite();
-}
-
 }  // namespace
 
 EnvWorld::EnvWorld(const EnvParams& params, Simulation sim)
@@ -23,6 +19,10 @@ EnvWorld::EnvWorld(const EnvParams& params, Simulation sim)
       steps_per_control_(std::lround(1.0 / (params.control_rate * sim_.timestep()))),
       rng_(StreamSeed(1, SeedStream::kEnvironment)) {
   params_.Validate();
+  level_ = params.action == "thrusts" ? CommandLevel::kRotorThrusts
+           : params.action == "ctbm"  ? CommandLevel::kThrustMoment
+           : params.action == "ctbr"  ? CommandLevel::kThrustRates
+                                      : CommandLevel::kThrustAttitude;
   loop_.vehicle = &vehicle_;
   loop_.control_rate = params.control_rate;
   loop_.inner = ControllerConfig().inner;
@@ -73,20 +73,17 @@ ControlCommand EnvWorld::CommandOf(const double* a) const {
   const double low = vehicle_.MinRotorThrust(), high = vehicle_.MaxRotorThrust();
   const auto rotor = [&](double x) { return low + 0.5 * (x + 1.0) * (high - low); };
   ControlCommand c;
+  c.level = level_;
   c.thrust = 4.0 * rotor(a[0]);
-  if (params_.action == "thrusts") {
-    c.level = CommandLevel::kRotorThrusts;
+  if (level_ == CommandLevel::kRotorThrusts) {
     for (int i = 0; i < 4; ++i) c.rotor_thrusts[i] = rotor(a[i]);
-  } else if (params_.action == "ctbm") {
-    c.level = CommandLevel::kThrustMoment;
+  } else if (level_ == CommandLevel::kThrustMoment) {
     const double roll_pitch = high * vehicle_.ArmLength();
     const double yaw = 2.0 * high * vehicle_.yaw_moment_per_thrust;
     c.moment_B = Vec3(a[1] * roll_pitch, a[2] * roll_pitch, a[3] * yaw);
-  } else if (params_.action == "ctbr") {
-    c.level = CommandLevel::kThrustRates;
+  } else if (level_ == CommandLevel::kThrustRates) {
     c.rate_B = Vec3(a[1], a[2], a[3]) * params_.max_rate;
   } else {
-    c.level = CommandLevel::kThrustAttitude;
     c.q_WB = Quat(Eigen::AngleAxisd(a[3] * kPi, Vec3::UnitZ())) *
              Quat(Eigen::AngleAxisd(a[2] * params_.max_tilt, Vec3::UnitY())) *
              Quat(Eigen::AngleAxisd(a[1] * params_.max_tilt, Vec3::UnitX()));
@@ -107,7 +104,7 @@ EnvStep EnvWorld::Step(const double* action, float* observation) {
   world_->EndControlPeriod();
   t_ += 1.0 / params_.control_rate;
   state_ = world_->Truth();
-  const bool finite = Finite(state_);
+  const bool finite = state_.AllFinite();
   const double distance = (state_.p_W - params_.target).norm();
   out.terminated =
       touched || !finite || !(distance <= params_.bounds_radius) || !sim_.TakeNewWarnings().empty();

@@ -56,6 +56,7 @@ class EnvWorld {
   Simulation sim_;
   FlightLoop loop_;
   std::optional<VehicleWorld> world_;
+  CommandLevel level_;  // params_.action, parsed once
   long steps_per_control_;
   std::mt19937_64 rng_;
   double t_ = 0.0;

@@ -85,10 +85,6 @@ std::optional<std::string> Collision(const std::vector<VehicleContact>& contacts
   return std::nullopt;
 }
 
-bool AllFinite(const State& s) {
-  return s.p_W.allFinite() && s.v_W.allFinite() && s.q_WB.coeffs().allFinite() && s.w_B.allFinite();
-}
-
 double YawOf(const State& state) {
   const Vec3 x_W = state.q_WB * Vec3::UnitX();
   return std::atan2(x_W.y(), x_W.x());
@@ -124,7 +120,7 @@ class FlightRun {
     const bool control_step = k % divider_ == 0;
     if (control_step && k > 0) world_->EndControlPeriod();
     const State state = world_->Truth();
-    if (!AllFinite(state)) return End(FlightStatus::kNonFinite);
+    if (!state.AllFinite()) return End(FlightStatus::kNonFinite);
     const double tr = takeoff_.ReferenceTime(t, state);  // the reference's own time [s]
     const State seen = world_->Seen(state);              // what the controller sees
     if (control_step && !Control(t, tr, seen)) return false;
