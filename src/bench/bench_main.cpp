@@ -2,7 +2,9 @@
 // measurement of ours against a reference in the same run. A separate binary, so that the
 // product links neither Google Benchmark nor OMPL.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -21,6 +23,7 @@
 #include "bench/sweep_benchmark.h"
 #include "common/error.h"
 #include "common/progress.h"
+#include "common/schema.h"
 #include "common/stop.h"
 #include "geometry/collision_world.h"
 #include "mission/mission.h"
@@ -81,119 +84,173 @@ void SpeedTable(const std::string& scenes, const std::string& maps, std::ostream
   }
 }
 
-int RunBench(const std::string& sections, const std::string& scenes, const std::string& maps,
-             const std::string& city, int seeds, double seconds, const std::string& robustness_csv,
-             const BenchSize& size, std::ostream& out, std::ostream& err) {
-  // a stage's line on a terminal, rewritten at most ten times a second; in a log, a line at
-  // most every 10 s
-  const bool terminal = ProgressDisplay::StderrIsTerminal();
-  ProgressDisplay progress(err, terminal, terminal ? 0.1 : 10.0);
-  const auto wanted = [&sections](const char* name) {
-    ThrowIfStopRequested("starting the next section (the tables above are complete)");
-    return sections == "all" ||
-           ("," + sections + ",").find(std::string(",") + name + ",") != std::string::npos;
-  };
-  if (wanted("trajectory")) {
-    out << "## Minimum snap: Ipopt against the closed-form solve (medians of 5 repetitions)\n\n";
-    CompareMinSnapSolvers(out, progress, size);
-    out << "\n";
+// What every section may need: the command's options, and the progress line.
+struct BenchContext {
+  std::string scenes, maps, city, robustness_csv;
+  int seeds = 20;
+  double seconds = 1.0;
+  BenchSize size;
+  ProgressDisplay* progress = nullptr;
+
+  std::string Scenario(const std::string& name) const {
+    return (std::filesystem::path(scenes) / name / "scenario.toml").string();
   }
-  if (wanted("render")) {
-    const std::string window =
-        (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
-    out << "## The video path against bare rendering on the window scene (60 frames, medians of "
-           "3)\n\n";
-    CompareVideoPath(window, out, progress, size);
-    out << "\n";
-  }
-  if (wanted("flight")) {
-    const std::string window =
-        (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
-    out << "## Closed loop against bare mj_step on the window scene (medians of 5 repetitions)\n\n";
-    CompareClosedLoop(window, out, progress, size);
-    out << "\n";
-  }
-  if (wanted("speed")) {
-    out << "## Flight time against a point-mass lower bound along the same path\n\n";
-    SpeedTable(scenes, maps, out);
-    out << "\n";
-  }
-  if (wanted("python")) {
-    out << "## A Python controller against the C++ ones (the aerobox package)\n\n" << std::flush;
-    const std::string window =
-        (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
-    RunPythonBenchmark(window, out, size);
-    out << "\n";
-  }
-  if (wanted("rotorpy")) {
-    out << "## RotorPy's Environment against aerobox.rotorpy's on the same scripts\n\n"
-        << std::flush;
-    RunRotorPyBenchmark(out, size);
-    out << "\n";
-  }
-  if (wanted("rl")) {
-    out << "## Learning environments: steps per second against the bare physics\n\n" << std::flush;
-    RunRlBenchmark(out, size);
-    out << "\n";
-  }
-  if (wanted("robustness")) {
-    RobustnessParams params;
+  std::vector<std::string> MapNames() const {
+    std::vector<std::string> names;
     std::istringstream list(maps);
-    std::string map;
-    while (std::getline(list, map, ',')) {
-      params.scenarios.push_back((std::filesystem::path(scenes) / map / "scenario.toml").string());
-    }
-    params.seeds = seeds;
-    params.csv = robustness_csv;
-    out << "## Robustness: wind, turbulence, drag and sensors, " << seeds
-        << " seeds per map and wind\n\n";
-    RobustnessTable(params, out, progress);
-    out << "\n";
+    std::string name;
+    while (std::getline(list, name, ',')) names.push_back(name);
+    return names;
   }
-  if (wanted("replanning")) {
-    std::vector<std::string> scenarios;
-    std::istringstream list(maps);
-    std::string map;
-    while (std::getline(list, map, ',')) {
-      scenarios.push_back((std::filesystem::path(scenes) / map / "scenario.toml").string());
-    }
-    out << "## Replanning: 30 % of each map's boxes unknown until seen, " << seeds
-        << " seeds per map\n\n";
-    ReplanningTable(scenarios, seeds, 0.3, out, progress);
-    out << "\n";
-  }
-  if (wanted("sweep")) {
-    out << "## Sweep throughput: aerobox sweep with one and two processes\n\n";
-    SweepBenchmark((std::filesystem::path(scenes) / "window" / "scenario.toml").string(), seeds,
-                   out, progress);
-    out << "\n";
-  }
-  if (wanted("city")) {
-    out << "## City scale: the FCND map, 50 queries 600-700 m apart\n\n";
-    if (city.empty()) {
-      out << "(skipped: give the map with --city FILE, e.g. the FCND colliders.csv)\n\n";
-    } else {
-      const std::string window =
-          (std::filesystem::path(scenes) / "window" / "scenario.toml").string();
-      CityBenchmark(city, window, size.Count(50, 2), out, progress, size);
-      out << "\n";
-    }
-  }
-  if (!wanted("planning")) return 0;
+};
+
+void PlanningSection(const BenchContext& c, std::ostream& out) {
   std::vector<PlanningProblem> problems;
-  std::istringstream names(maps);
-  std::string name;
-  while (std::getline(names, name, ',')) {
-    const std::string scenario = (std::filesystem::path(scenes) / name / "scenario.toml").string();
+  for (const std::string& name : c.MapNames()) {
+    const std::string scenario = c.Scenario(name);
     const FlightSetup setup = LoadFlightSetup(scenario, {});
     if (!setup.goal) throw InputError({scenario, 0}, "goal", "the benchmark needs a goal");
     const CollisionWorld world(setup.map, setup.PlannerCollision());
     const auto [start, goal] = ResolveEndpoints(setup.map, world, setup.start, *setup.goal);
     problems.push_back({name, setup.map, start.used, goal.used});
   }
-  out << "## RRT*: aerobox against OMPL " << (HaveOmpl() ? "1.5.2" : "(not built)") << ", " << seeds
-      << " seeds, " << seconds << " s each\n\n";
-  ComparePlanners(problems, seeds, seconds, out, progress);
+  out << "## RRT*: aerobox against OMPL " << (HaveOmpl() ? "1.5.2" : "(not built)") << ", "
+      << c.seeds << " seeds, " << c.seconds << " s each\n\n";
+  ComparePlanners(problems, c.seeds, c.seconds, out, *c.progress);
+}
+
+// A section: its name in --sections, and what prints its heading and its table.
+struct BenchSection {
+  const char* name;
+  std::function<void(const BenchContext&, std::ostream&)> run;
+};
+
+const std::vector<BenchSection>& Sections() {
+  static const std::vector<BenchSection> kSections = {
+      {"trajectory",
+       [](const BenchContext& c, std::ostream& out) {
+         out << "## Minimum snap: Ipopt against the closed-form solve (medians of 5 "
+                "repetitions)\n\n";
+         CompareMinSnapSolvers(out, *c.progress, c.size);
+       }},
+      {"render",
+       [](const BenchContext& c, std::ostream& out) {
+         out << "## The video path against bare rendering on the window scene (60 frames, "
+                "medians of 3)\n\n";
+         CompareVideoPath(c.Scenario("window"), out, *c.progress, c.size);
+       }},
+      {"flight",
+       [](const BenchContext& c, std::ostream& out) {
+         out << "## Closed loop against bare mj_step on the window scene (medians of 5 "
+                "repetitions)\n\n";
+         CompareClosedLoop(c.Scenario("window"), out, *c.progress, c.size);
+       }},
+      {"speed",
+       [](const BenchContext& c, std::ostream& out) {
+         out << "## Flight time against a point-mass lower bound along the same path\n\n";
+         SpeedTable(c.scenes, c.maps, out);
+       }},
+      {"python",
+       [](const BenchContext& c, std::ostream& out) {
+         out << "## A Python controller against the C++ ones (the aerobox package)\n\n"
+             << std::flush;
+         RunPythonBenchmark(c.Scenario("window"), out, c.size);
+       }},
+      {"rotorpy",
+       [](const BenchContext& c, std::ostream& out) {
+         out << "## RotorPy's Environment against aerobox.rotorpy's on the same scripts\n\n"
+             << std::flush;
+         RunRotorPyBenchmark(out, c.size);
+       }},
+      {"rl",
+       [](const BenchContext& c, std::ostream& out) {
+         out << "## Learning environments: steps per second against the bare physics\n\n"
+             << std::flush;
+         RunRlBenchmark(out, c.size);
+       }},
+      {"robustness",
+       [](const BenchContext& c, std::ostream& out) {
+         RobustnessParams params;
+         for (const std::string& map : c.MapNames()) params.scenarios.push_back(c.Scenario(map));
+         params.seeds = c.seeds;
+         params.csv = c.robustness_csv;
+         out << "## Robustness: wind, turbulence, drag and sensors, " << c.seeds
+             << " seeds per map and wind\n\n";
+         RobustnessTable(params, out, *c.progress);
+       }},
+      {"replanning",
+       [](const BenchContext& c, std::ostream& out) {
+         std::vector<std::string> scenarios;
+         for (const std::string& map : c.MapNames()) scenarios.push_back(c.Scenario(map));
+         out << "## Replanning: 30 % of each map's boxes unknown until seen, " << c.seeds
+             << " seeds per map\n\n";
+         ReplanningTable(scenarios, c.seeds, 0.3, out, *c.progress);
+       }},
+      {"sweep",
+       [](const BenchContext& c, std::ostream& out) {
+         out << "## Sweep throughput: aerobox sweep with one and two processes\n\n";
+         SweepBenchmark(c.Scenario("window"), c.seeds, out, *c.progress);
+       }},
+      {"city",
+       [](const BenchContext& c, std::ostream& out) {
+         out << "## City scale: the FCND map, 50 queries 600-700 m apart\n\n";
+         if (c.city.empty()) {
+           out << "(skipped: give the map with --city FILE, e.g. the FCND colliders.csv)\n";
+         } else {
+           CityBenchmark(c.city, c.Scenario("window"), c.size.Count(50, 2), out, *c.progress,
+                         c.size);
+         }
+       }},
+      {"planning", PlanningSection},
+  };
+  return kSections;
+}
+
+std::vector<std::string> SectionNames() {
+  std::vector<std::string> names;
+  for (const BenchSection& section : Sections()) names.push_back(section.name);
+  return names;
+}
+
+// The sections `list` names ("all", or names joined by commas), in the table's order; an
+// unknown name is an InputError naming the one it looks like.
+std::vector<const BenchSection*> Wanted(const std::string& list) {
+  std::vector<std::string> asked;
+  std::istringstream names(list);
+  std::string name;
+  while (std::getline(names, name, ',')) asked.push_back(name);
+  const std::vector<std::string> known = SectionNames();
+  for (const std::string& a : asked) {
+    if (a == "all" || std::find(known.begin(), known.end(), a) != known.end()) continue;
+    const std::string near = NearestName(a, known);
+    throw InputError({"", 0}, "--sections",
+                     "unknown section '" + a + "'" +
+                         (near.empty() ? "" : " (did you mean '" + near + "'?)") +
+                         "; sections: all, " + ListOfNames(known));
+  }
+  std::vector<const BenchSection*> wanted;
+  for (const BenchSection& section : Sections()) {
+    const bool all = std::find(asked.begin(), asked.end(), "all") != asked.end();
+    if (all || std::find(asked.begin(), asked.end(), section.name) != asked.end()) {
+      wanted.push_back(&section);
+    }
+  }
+  return wanted;
+}
+
+int RunBench(const std::string& sections, BenchContext context, std::ostream& out,
+             std::ostream& err) {
+  const std::vector<const BenchSection*> wanted = Wanted(sections);  // before any work
+  // a stage's line on a terminal, rewritten at most ten times a second; in a log, a line at
+  // most every 10 s
+  const bool terminal = ProgressDisplay::StderrIsTerminal();
+  ProgressDisplay progress(err, terminal, terminal ? 0.1 : 10.0);
+  context.progress = &progress;
+  for (const BenchSection* section : wanted) {
+    ThrowIfStopRequested("starting the next section (the tables above are complete)");
+    section->run(context, out);
+    out << "\n";
+  }
   return 0;
 }
 
@@ -208,10 +265,10 @@ int main(int argc, char** argv) {
   std::string bench_maps = "window,maze,forest,over_under";
   int bench_seeds = 20;
   double bench_seconds = 1.0;
-  app.add_option("--sections", bench_sections,
-                 "all, or some of: "
-                 "trajectory,flight,render,speed,python,rotorpy,rl,robustness,replanning,sweep,"
-                 "city,planning")
+  std::string names;
+  for (const std::string& name : aerobox::SectionNames())
+    names += (names.empty() ? "" : ",") + name;
+  app.add_option("--sections", bench_sections, "all, or some of (comma-separated): " + names)
       ->capture_default_str();
   app.add_option("--scenes", bench_scenes, "folder with the scenes")->capture_default_str();
   app.add_option("--maps", bench_maps, "comma-separated scene names")->capture_default_str();
@@ -239,6 +296,12 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& error) {
     return app.exit(error) == 0 ? 0 : 2;
   }
+  try {
+    aerobox::Wanted(bench_sections);  // every option before any work
+  } catch (const aerobox::InputError& error) {
+    std::cerr << "aerobox bench: error: " << error.what() << "\n";
+    return 2;
+  }
   if (size.smoke) {
     if (app.count("--maps") == 0) bench_maps = "window";
     if (app.count("--seeds") == 0) bench_seeds = 1;
@@ -258,8 +321,15 @@ int main(int argc, char** argv) {
                                   "its folder does not exist");
       }
     }
-    return aerobox::RunBench(bench_sections, bench_scenes, bench_maps, bench_city, bench_seeds,
-                             bench_seconds, robustness_csv, size, std::cout, std::cerr);
+    aerobox::BenchContext context;
+    context.scenes = bench_scenes;
+    context.maps = bench_maps;
+    context.city = bench_city;
+    context.robustness_csv = robustness_csv;
+    context.seeds = bench_seeds;
+    context.seconds = bench_seconds;
+    context.size = size;
+    return aerobox::RunBench(bench_sections, context, std::cout, std::cerr);
   } catch (const aerobox::Interrupted& stop) {
     std::cout << std::flush;
     std::cerr << "\naerobox bench: interrupted while " << stop.during()

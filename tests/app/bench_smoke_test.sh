@@ -37,4 +37,13 @@ if grep -q "skipped" "$work/tables.md"; then
   echo "FAIL: a section was skipped"
   exit 1
 fi
+grep -q "^| navigate |" "$work/tables.md" ||
+  { cat "$work/tables.md"; echo "FAIL: the learning environments' table lacks navigate"; exit 1; }
+# a misspelt section is refused before any work, naming the one it looks like
+if "$aerobox" bench --sections rl,robustnes > "$work/out.txt" 2> "$work/err.txt"; then
+  echo "FAIL: an unknown section was accepted"; exit 1
+fi
+grep -q "unknown section 'robustnes' (did you mean 'robustness'?)" "$work/err.txt" ||
+  { cat "$work/err.txt"; echo "FAIL: the unknown section's message"; exit 1; }
+[ ! -s "$work/out.txt" ] || { cat "$work/out.txt"; echo "FAIL: work before the refusal"; exit 1; }
 echo "bench smoke: all 12 sections ran"
