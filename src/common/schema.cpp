@@ -132,5 +132,9 @@ void Reference::Choice(const Field& field, std::string* value,
                   ListOfNames(QuotedAll(choices)), field.meaning});
 }
 
+void Reference::Text(const Field& field, std::string* value) {
+  rows.push_back({table_ + "." + field.name, field.unit, Quoted(*value), "text", field.meaning});
+}
+
 }  // namespace schema_detail
 }  // namespace aerobox

@@ -44,6 +44,8 @@ class Archive {
   // One of `choices` (their order is the one messages and the reference give).
   virtual void Choice(const Field& field, std::string* value,
                       const std::vector<std::string>& choices) = 0;
+  // Any text (a file's path, a name).
+  virtual void Text(const Field& field, std::string* value) = 0;
 
   // An angle kept in radians, given in degrees within [low, high] (the value changes only when
   // the archive sets it, so that a default survives the round trip bit for bit).
@@ -140,6 +142,7 @@ class RangeCheck : public Archive {
   void Vector(const Field& field, Vec3* value, double low, double high) override;
   void Choice(const Field& field, std::string* value,
               const std::vector<std::string>& choices) override;
+  void Text(const Field&, std::string*) override {}
 
  private:
   std::string table_;
@@ -155,6 +158,7 @@ class Reference : public Archive {
   void Vector(const Field& field, Vec3* value, double low, double high) override;
   void Choice(const Field& field, std::string* value,
               const std::vector<std::string>& choices) override;
+  void Text(const Field& field, std::string* value) override;
   std::vector<KeyRow> rows;
 
  private:

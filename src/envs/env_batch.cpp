@@ -9,17 +9,12 @@
 
 namespace aerobox {
 
-std::string EnvSceneXml(const EnvParams& params) {
-  Map room;
-  room.name = "env_" + params.task;
-  const double r = params.bounds_radius + 1.0;
-  room.bounds = {Vec3(params.target.x() - r, params.target.y() - r, 0.0),
-                 Vec3(params.target.x() + r, params.target.y() + r, params.target.z() + r)};
+std::string EnvSceneXml(const EnvParams& params, const Map& map) {
   SceneOptions options;
-  options.vehicle_position = params.target;
+  options.vehicle_position = map.bounds.Center();
   options.offscreen_width = 640;
   options.offscreen_height = 480;
-  return BuildSceneMjcf(room, params.Vehicle(), options);
+  return BuildSceneMjcf(map, params.Vehicle(), options);
 }
 
 EnvBatch::EnvBatch(const EnvParams& params, int worlds, int threads)
@@ -27,27 +22,33 @@ EnvBatch::EnvBatch(const EnvParams& params, int worlds, int threads)
   if (worlds < 1)
     throw std::invalid_argument("EnvBatch: at least one world, got " + std::to_string(worlds));
   params_.Validate();
-  const Simulation first = Simulation::FromXml(EnvSceneXml(params_), "env");
+  map_ = FindEnvTask(params_.task).map(params_);
+  observation_size_ = params_.ObservationSize();
+  term_count_ = static_cast<int>(params_.RewardTermNames().size());
+  const Simulation first = Simulation::FromXml(EnvSceneXml(params_, map_), "env");
   for (int i = 0; i < worlds; ++i) {
-    worlds_.push_back(std::make_unique<EnvWorld>(params_, first.Clone()));
+    worlds_.push_back(std::make_unique<EnvWorld>(params_, first.Clone(), map_));
   }
   ended_.assign(static_cast<size_t>(worlds), 0);
 }
 
-void EnvBatch::Reset(const std::vector<std::optional<std::uint64_t>>& seeds, float* observations) {
-  const int d = params_.ObservationSize();
+void EnvBatch::Reset(const std::vector<std::optional<std::uint64_t>>& seeds, float* observations,
+                     const EnvOptions& options) {
+  worlds_.front()->task().Check(options);  // before any world changes
+  const int d = observation_size_;
   pool_.For(size(), [&](int begin, int end) {
     for (int i = begin; i < end; ++i) {
       const auto seed =
           static_cast<size_t>(i) < seeds.size() ? seeds[static_cast<size_t>(i)] : std::nullopt;
-      worlds_[static_cast<size_t>(i)]->Reset(seed, observations + static_cast<long>(i) * d);
+      worlds_[static_cast<size_t>(i)]->Reset(seed, observations + static_cast<long>(i) * d,
+                                             options);
       ended_[static_cast<size_t>(i)] = 0;
     }
   });
 }
 
 void EnvBatch::ResetSome(const std::vector<int>& indices, float* observations) {
-  const int d = params_.ObservationSize();
+  const int d = observation_size_;
   for (int i : indices) {
     if (i < 0 || i >= size()) {
       throw std::out_of_range("world " + std::to_string(i) + " of " + std::to_string(size()));
@@ -64,8 +65,7 @@ void EnvBatch::ResetSome(const std::vector<int>& indices, float* observations) {
 
 void EnvBatch::Step(const double* actions, float* observations, double* rewards,
                     std::uint8_t* terminated, std::uint8_t* truncated, double* terms) {
-  const int k = params_.ActionSize(), d = params_.ObservationSize();
-  const int n_terms = static_cast<int>(RewardTermNames().size());
+  const int k = params_.ActionSize(), d = observation_size_, n_terms = term_count_;
   for (int i = 0; i < size(); ++i) {
     for (int j = 0; j < k; ++j) {
       const double a = actions[i * k + j];
@@ -89,6 +89,7 @@ void EnvBatch::Step(const double* actions, float* observations, double* rewards,
       rewards[i] = step.reward;
       terminated[i] = step.terminated;
       truncated[i] = step.truncated;
+      step.terms.resize(static_cast<size_t>(n_terms), 0.0);  // a reset scores nothing
       for (int j = 0; j < n_terms; ++j) terms[i * n_terms + j] = step.terms[static_cast<size_t>(j)];
     }
   });

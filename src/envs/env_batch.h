@@ -27,7 +27,9 @@ class EnvBatch {
 
   // Every world anew; world i from seeds[i] when it has one. `observations`: size() x
   // ObservationSize floats.
-  void Reset(const std::vector<std::optional<std::uint64_t>>& seeds, float* observations);
+  // `options` (reset's) apply to every world; std::invalid_argument when the task refuses them.
+  void Reset(const std::vector<std::optional<std::uint64_t>>& seeds, float* observations,
+             const EnvOptions& options = {});
   // The worlds `indices` anew, each going on from its own stream (as an autoreset does); their
   // observations into `observations` (indices.size() x ObservationSize floats), in that order.
   // For the same-step autoreset of other vector APIs (stable-baselines3's). Throws
@@ -36,20 +38,26 @@ class EnvBatch {
   // One step of every world: `actions` size() x ActionSize, each finite and within [-1, 1]
   // (else std::invalid_argument naming the world and the component, before any world steps).
   // A world whose episode ended at the last step is reset instead (its action ignored, reward
-  // 0, neither flag set), from its own stream. `terms`: size() x 5 reward terms.
+  // 0, neither flag set), from its own stream. `terms`: size() x term_count() reward terms.
   void Step(const double* actions, float* observations, double* rewards, std::uint8_t* terminated,
             std::uint8_t* truncated, double* terms);
 
   EnvWorld& world(int i) { return *worlds_[static_cast<size_t>(i)]; }
+  int observation_size() const { return observation_size_; }
+  int term_count() const { return term_count_; }
+  const Map& map() const { return map_; }
 
  private:
   EnvParams params_;
+  Map map_;  // the task kind's, which every world flies in
+  int observation_size_, term_count_;
   std::vector<std::unique_ptr<EnvWorld>> worlds_;
   std::vector<std::uint8_t> ended_;  // the episode ended at the last step: reset at the next
   WorkerPool pool_;
 };
 
-// The scene every world of `params` flies in: an empty room around the target, with the floor.
-std::string EnvSceneXml(const EnvParams& params);
+// The scene every world of `params` flies in: the task kind's map (an empty room around the
+// target, a map of boxes) with the floor.
+std::string EnvSceneXml(const EnvParams& params, const Map& map);
 
 }  // namespace aerobox

@@ -10,72 +10,110 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+CommandLevel LevelOf(const std::string& action) {
+  return action == "thrusts" ? CommandLevel::kRotorThrusts
+         : action == "ctbm"  ? CommandLevel::kThrustMoment
+         : action == "ctbr"  ? CommandLevel::kThrustRates
+                             : CommandLevel::kThrustAttitude;  // ctatt, and velocity's output
+}
+
+// The velocity loop of a "velocity" action: aerobox's position controller with no position
+// gain, so that the velocity asked for is its setpoint, limited to the action's range.
+PositionControlParams VelocityLoop(const EnvParams& params) {
+  PositionControlParams p;
+  p.position_gain = Vec3::Zero();
+  p.max_speed_horizontal = params.max_speed * std::sqrt(2.0);
+  p.max_speed_vertical = params.max_speed;
+  p.max_tilt = params.max_tilt;
+  return p;
+}
+
 }  // namespace
 
-EnvWorld::EnvWorld(const EnvParams& params, Simulation sim)
+EnvWorld::EnvWorld(const EnvParams& params, Simulation sim, const Map& map)
     : params_(params),
       vehicle_(params.Vehicle()),
       sim_(std::move(sim)),
-      steps_per_control_(std::lround(1.0 / (params.control_rate * sim_.timestep()))),
-      rng_(StreamSeed(1, SeedStream::kEnvironment)) {
+      task_(FindEnvTask(params.task).make(params, vehicle_, map)),
+      velocity_(params.action == "velocity"),
+      level_(LevelOf(params.action)),
+      velocity_loop_(VelocityLoop(params), vehicle_.mass),
+      steps_per_control_(std::lround(1.0 / (params.control_rate * sim_.timestep()))) {
   params_.Validate();
-  level_ = params.action == "thrusts" ? CommandLevel::kRotorThrusts
-           : params.action == "ctbm"  ? CommandLevel::kThrustMoment
-           : params.action == "ctbr"  ? CommandLevel::kThrustRates
-                                      : CommandLevel::kThrustAttitude;
+  random_.Seed(StreamSeed(1, SeedStream::kEnvironment));
   loop_.vehicle = &vehicle_;
   loop_.control_rate = params.control_rate;
   loop_.inner = ControllerConfig().inner;
+  loop_.aero.body_drag = loop_.aero.rotor_drag =
+      params.drag || params.wind_speed > 0 || params.wind_turbulence > 0;
+  loop_.sensors.imu.enabled = loop_.sensors.position.enabled = params.sensors;
 }
 
-double EnvWorld::Uniform() { return static_cast<double>(rng_() >> 11) * 0x1.0p-53; }
-
-// Uniform in the ball of `radius` [m or m/s or rad/s]: a direction from three normal draws (Box
-// and Muller), a distance from the cube root.
-Vec3 EnvWorld::InBall(double radius) {
-  Vec3 d;
-  for (int i = 0; i < 3; ++i) {
-    const double u = 1.0 - Uniform(), v = Uniform();
-    d[i] = std::sqrt(-2.0 * std::log(u)) * std::cos(2.0 * kPi * v);
+void EnvWorld::Vary(std::uint64_t seed) {
+  EnvRandom r;
+  r.Seed(StreamSeed(seed, SeedStream::kEnvironment));
+  const auto factor = [&r](double f) { return r.Uniform(1.0 - f, 1.0 + f); };
+  VehicleScaling s;
+  s.mass = factor(params_.vary_mass);
+  s.inertia = Vec3::Constant(factor(params_.vary_inertia));
+  for (int i = 0; i < 4; ++i) {
+    s.thrust[i] = factor(params_.vary_thrust);
+    s.yaw_moment[i] = factor(params_.vary_yaw_moment);
+    s.motor_lag[i] = factor(params_.vary_motor_lag);
+    s.rotor_limit[i] = factor(params_.vary_rotor_limit);
   }
-  const double n = d.norm();
-  if (n < 1e-12) return Vec3::Zero();
-  return d / n * (radius * std::cbrt(Uniform()));
+  if (params_.Varies()) sim_.ScaleVehicle(s);
+  const double heading = r.Uniform(-kPi, kPi);
+  loop_.wind.mean =
+      r.Uniform(0.0, params_.wind_speed) * Vec3(std::cos(heading), std::sin(heading), 0.0);
+  const double intensity = r.Uniform(0.0, params_.wind_turbulence);
+  loop_.wind.turbulence = intensity > 0 ? Turbulence::kDryden : Turbulence::kNone;
+  loop_.wind.intensity = Vec3(1.0, 1.0, 0.5) * intensity;
+  const double noise = factor(params_.vary_sensor_noise);
+  const SensorParams nominal;
+  loop_.sensors.imu.gyro_noise_density = nominal.imu.gyro_noise_density * noise;
+  loop_.sensors.imu.accel_noise_density = nominal.imu.accel_noise_density * noise;
+  loop_.sensors.position.noise = nominal.position.noise * noise;
+  loop_.sensors.position.attitude_noise = nominal.position.attitude_noise * noise;
 }
 
-State EnvWorld::RandomStart() {
-  State s;
-  s.p_W = params_.target + InBall(params_.start_radius);
-  s.v_W = InBall(params_.start_speed);
-  const double yaw = 2.0 * kPi * Uniform() - kPi;
-  const double axis = 2.0 * kPi * Uniform();
-  const double tilt = params_.start_tilt * Uniform();
-  s.q_WB = Quat(Eigen::AngleAxisd(yaw, Vec3::UnitZ())) *
-           Quat(Eigen::AngleAxisd(tilt, Vec3(std::cos(axis), std::sin(axis), 0.0)));
-  s.w_B = InBall(params_.start_rate);
-  return s;
-}
-
-void EnvWorld::Reset(std::optional<std::uint64_t> seed, float* observation) {
-  if (seed) rng_.seed(StreamSeed(*seed, SeedStream::kEnvironment));
+void EnvWorld::Reset(std::optional<std::uint64_t> seed, float* observation,
+                     const EnvOptions& options) {
+  task_->Check(options);  // before anything changes
+  if (seed) random_.Seed(StreamSeed(*seed, SeedStream::kEnvironment));
+  const State start = task_->Begin(random_, options);
+  loop_.seed = random_.Next();
   sim_.ResetData();
-  sim_.SetVehicleState(RandomStart());
+  Vary(loop_.seed);  // the episode's vehicle (its scaling resets the data too) and wind
+  sim_.SetVehicleState(start);
   sim_.SetRotorThrusts(Vec4::Constant(vehicle_.HoverThrustPerRotor()));
-  loop_.seed = rng_();
   world_.emplace(loop_, &sim_);
+  velocity_loop_.Reset();
   t_ = 0.0;
   state_ = sim_.VehicleState();
+  seen_ = world_->Seen(state_);
   last_action_.fill(0.0);
   Observe(observation);
 }
 
-ControlCommand EnvWorld::CommandOf(const double* a) const {
+ControlCommand EnvWorld::CommandOf(const double* a) {
   const double low = vehicle_.MinRotorThrust(), high = vehicle_.MaxRotorThrust();
   const auto rotor = [&](double x) { return low + 0.5 * (x + 1.0) * (high - low); };
   ControlCommand c;
   c.level = level_;
   c.thrust = 4.0 * rotor(a[0]);
-  if (level_ == CommandLevel::kRotorThrusts) {
+  if (velocity_) {
+    PositionSetpoint setpoint;
+    setpoint.p_W = seen_.p_W;
+    setpoint.v_W = Vec3(a[0], a[1], a[2]) * params_.max_speed;
+    setpoint.yaw = a[3] * kPi;
+    AttitudeSetpoint out;
+    out.thrust = vehicle_.mass * kGravity;
+    velocity_loop_.Update(setpoint, seen_.p_W, seen_.v_W, seen_.q_WB, 1.0 / params_.control_rate,
+                          &out);  // a state that is not finite keeps the level hover
+    c.thrust = out.thrust;
+    c.q_WB = out.q_WB;
+  } else if (level_ == CommandLevel::kRotorThrusts) {
     for (int i = 0; i < 4; ++i) c.rotor_thrusts[i] = rotor(a[i]);
   } else if (level_ == CommandLevel::kThrustMoment) {
     const double roll_pitch = high * vehicle_.ArmLength();
@@ -93,40 +131,35 @@ ControlCommand EnvWorld::CommandOf(const double* a) const {
 
 EnvStep EnvWorld::Step(const double* action, float* observation) {
   const ControlCommand command = CommandOf(action);
-  EnvStep out;
   bool touched = false;
   State truth = world_->Truth();
   for (long k = 0; k < steps_per_control_ && !touched; ++k) {
-    world_->Command(command, truth);
+    world_->Command(command, world_->Seen(truth));
     truth = world_->Step(truth);
     touched = sim_.VehicleTouches();
   }
   world_->EndControlPeriod();
   t_ += 1.0 / params_.control_rate;
   state_ = world_->Truth();
-  const bool finite = state_.AllFinite();
-  const double distance = (state_.p_W - params_.target).norm();
-  out.terminated =
-      touched || !finite || !(distance <= params_.bounds_radius) || !sim_.TakeNewWarnings().empty();
+  seen_ = world_->Seen(state_);
+  const bool finite = state_.AllFinite() && seen_.AllFinite();
+  TaskScore score = task_->Score(t_, state_, action);
+  EnvStep out;
+  out.terminated = touched || !finite || score.ended || !sim_.TakeNewWarnings().empty();
   out.truncated = !out.terminated && t_ >= params_.episode_time - 1e-9;
-  double squared = 0.0;
-  for (int i = 0; i < 4; ++i) {
-    last_action_[i] = action[i];
-    squared += action[i] * action[i];
+  out.terms = std::move(score.terms);
+  for (double& term : out.terms) {
+    if (!finite) term = 0.0;
+    out.reward += term;
   }
-  if (finite) {
-    out.terms = {params_.reward_alive, -params_.reward_position * distance,
-                 -params_.reward_velocity * state_.v_W.norm(),
-                 -params_.reward_rate * state_.w_B.norm(), -params_.reward_action * squared};
-  }
-  for (double term : out.terms) out.reward += term;
+  for (int i = 0; i < 4; ++i) last_action_[i] = action[i];
   Observe(observation);
   return out;
 }
 
 void EnvWorld::Observe(float* o) const {
-  const State& s = state_;
-  const Vec3 d = s.p_W - params_.target;
+  const State& s = seen_;
+  const Vec3 d = s.p_W - task_->Reference(t_);
   int n = 0;
   for (int i = 0; i < 3; ++i) o[n++] = static_cast<float>(d[i]);
   for (int i = 0; i < 3; ++i) o[n++] = static_cast<float>(s.v_W[i]);
@@ -143,6 +176,7 @@ void EnvWorld::Observe(float* o) const {
   }
   for (int i = 0; i < 3; ++i) o[n++] = static_cast<float>(s.w_B[i]);
   for (double a : last_action_) o[n++] = static_cast<float>(a);
+  task_->Observe(t_, s, o + n);
 }
 
 }  // namespace aerobox

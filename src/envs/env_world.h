@@ -1,17 +1,20 @@
 // One world of a learning environment: its own MuJoCo data, the vehicle's world below the
-// action (mission/flight_parts.h: the inner loops at the physics rate), and the task: a seeded
-// random start, the observation, the reward and how an episode ends. Worlds share nothing, so
-// a batch (env_batch.h) steps many in threads and each gives what it would alone.
+// action (mission/flight_parts.h: the inner loops at the physics rate), and the task
+// (env_task.h): a seeded random start, the observation, the reward and how an episode ends.
+// Worlds share nothing, so a batch (env_batch.h) steps many in threads and each gives what it
+// would alone.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
-#include <random>
 #include <vector>
 
 #include "control/controller.h"
+#include "control/position_control.h"
 #include "envs/env_params.h"
+#include "envs/env_task.h"
 #include "mission/flight.h"
 #include "mission/flight_parts.h"
 #include "sim/simulation.h"
@@ -21,46 +24,54 @@ namespace aerobox {
 // What one step gave.
 struct EnvStep {
   double reward = 0.0;
-  bool terminated = false;        // crashed, touched anything, left the bounds, not finite
-  bool truncated = false;         // the episode's time is up
-  std::array<double, 5> terms{};  // the reward's terms (RewardTermNames), summing to it
+  bool terminated = false;    // crashed, touched anything, left the bounds, not finite
+  bool truncated = false;     // the episode's time is up
+  std::vector<double> terms;  // the reward's terms (EnvParams::RewardTermNames), summing to it
 };
 
 class EnvWorld {
  public:
-  // `sim`: this world's own simulation of the environment's scene. Throws
-  // std::invalid_argument for bad parameters.
-  EnvWorld(const EnvParams& params, Simulation sim);
+  // `sim`: this world's own simulation of the environment's scene, made from `map` (the task
+  // kind's). Throws std::invalid_argument for bad parameters.
+  EnvWorld(const EnvParams& params, Simulation sim, const Map& map);
 
   // A new episode from a random start, from the world's stream seeded with `seed` when given
-  // (else going on from the last). Writes the observation (ObservationSize floats).
-  void Reset(std::optional<std::uint64_t> seed, float* observation);
+  // (else going on from the last), with reset's options. Writes the observation
+  // (ObservationSize floats). Throws std::invalid_argument for options the task refuses.
+  void Reset(std::optional<std::uint64_t> seed, float* observation, const EnvOptions& options = {});
   // One step of `action` (ActionSize values, each in [-1, 1], finite: the caller checks), held
   // over the control period. Writes the observation after it.
   EnvStep Step(const double* action, float* observation);
 
-  // The command an action asks for (docs/learning.md's scaling).
-  ControlCommand CommandOf(const double* action) const;
-  double time() const { return t_; }  // [s] into the episode
-  const State& state() const { return state_; }
+  // The command an action asks for (docs/learning.md's scaling); a velocity action runs the
+  // velocity loop once.
+  ControlCommand CommandOf(const double* action);
+  double time() const { return t_; }             // [s] into the episode
+  const State& state() const { return state_; }  // the truth
+  const State& seen() const { return seen_; }    // the observation's: with sensors, the estimate
+  const EnvTask& task() const { return *task_; }
+  const VehicleWorld& vehicle_world() const { return *world_; }  // after a reset
   Simulation& sim() { return sim_; }
 
  private:
   void Observe(float* observation) const;
-  State RandomStart();
-  double Uniform();  // [0, 1), the same on every platform
-  Vec3 InBall(double radius);
+  // Draws the episode's vehicle, wind and sensor noise (domain randomisation) from `seed`.
+  void Vary(std::uint64_t seed);
 
   EnvParams params_;
   QuadParams vehicle_;
   Simulation sim_;
+  std::unique_ptr<EnvTask> task_;
   FlightLoop loop_;
   std::optional<VehicleWorld> world_;
+  bool velocity_;       // the action is a velocity: velocity_loop_ turns it into an attitude
   CommandLevel level_;  // params_.action, parsed once
+  PositionController velocity_loop_;
   long steps_per_control_;
-  std::mt19937_64 rng_;
+  EnvRandom random_;
   double t_ = 0.0;
-  State state_;
+  State state_;  // the truth
+  State seen_;   // what the vehicle knows: the truth, or the estimate with sensors on
   std::array<double, 4> last_action_{};
 };
 

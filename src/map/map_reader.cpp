@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <sstream>
 
+#include "map/read_file.h"
 #include "map/text_fields.h"
 
 namespace aerobox {
@@ -76,6 +78,12 @@ StartGoal ReadStartGoal(std::istream& in, const std::string& file) {
   if (!start) throw InputError({file, 0}, "start", "no 'start:' line");
   if (!goal) throw InputError({file, 0}, "goal", "no 'goal:' line");
   return {*start, *goal};
+}
+
+Map ReadMapFile(const std::string& path) {
+  const std::string text = ReadTextFile(path);
+  std::istringstream in(text);
+  return ReadMap(in, path, DetectMapFormat(path, text.substr(0, 64)));
 }
 
 }  // namespace aerobox

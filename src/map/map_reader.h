@@ -41,6 +41,9 @@ Map ReadCsvMap(std::istream& in, const std::string& file);
 
 // Reads with the given format; the map's name is the file's stem.
 Map ReadMap(std::istream& in, const std::string& file, MapFormat format);
+// Reads the file at `path` in the format its name and first bytes say; InputError naming the
+// file (and the line) when it cannot.
+Map ReadMapFile(const std::string& path);
 
 // Start and goal from a RBE595 "start and goal" file:
 //   start: (0, 20, 2)

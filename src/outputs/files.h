@@ -1,4 +1,4 @@
-// The only place aerobox writes files (input files are read by scenario/read_file.h).
+// The only place aerobox writes files (input files are read by map/read_file.h).
 #pragma once
 
 #include <cstdio>

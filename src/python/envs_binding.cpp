@@ -40,12 +40,19 @@ class EnvCore {
   // The vehicle as RotorPy's quad_params dict (what a controller flying the policy needs).
   py::dict quad_params() const { return python::VehicleDict(batch_->params().Vehicle()); }
 
-  py::array_t<float> Reset(const std::vector<std::optional<std::uint64_t>>& seeds) {
+  std::vector<std::string> observation_names() const { return batch_->params().ObservationNames(); }
+  std::vector<std::string> reward_terms() const { return batch_->params().RewardTermNames(); }
+
+  py::array_t<float> Reset(const std::vector<std::optional<std::uint64_t>>& seeds,
+                           const py::object& options) {
+    const EnvOptions parsed = Options(options);
     py::array_t<float> obs({size(), observation_size()});
     float* out = obs.mutable_data();
-    {
+    try {
       py::gil_scoped_release free;
-      batch_->Reset(seeds, out);
+      batch_->Reset(seeds, out, parsed);
+    } catch (const std::invalid_argument& e) {
+      throw py::value_error(who_ + ": reset: " + e.what());
     }
     return obs;
   }
@@ -69,7 +76,7 @@ class EnvCore {
                             std::to_string(action_size()) + ")");
     }
     const int n = size();
-    const int n_terms = static_cast<int>(RewardTermNames().size());
+    const int n_terms = batch_->term_count();
     py::array_t<float> obs({n, observation_size()});
     py::array_t<double> rewards(n), terms({n, n_terms});
     py::array_t<bool> terminated(n), truncated(n);
@@ -99,7 +106,8 @@ class EnvCore {
       rendered_ = i;
     }
     Overlay overlay;
-    overlay.goal = batch_->params().target;
+    EnvWorld& world = batch_->world(i);
+    overlay.goal = world.task().Reference(world.time());
     Image image;
     renderer_->Render(CameraSpec{}, overlay, &image);
     py::array_t<std::uint8_t> out({image.height, image.width, 3});
@@ -108,6 +116,42 @@ class EnvCore {
   }
 
  private:
+  // reset's options: a dict of "start" and "target", each three numbers [m] (or None).
+  EnvOptions Options(const py::object& options) const {
+    EnvOptions parsed;
+    if (options.is_none()) return parsed;
+    if (!py::isinstance<py::dict>(options)) {
+      throw py::value_error(who_ + ": reset: options " + py::repr(options).cast<std::string>() +
+                            ": expected a dict (keys start, target) or None");
+    }
+    const std::vector<std::string> keys = {"start", "target"};
+    for (const auto item : options.cast<py::dict>()) {
+      const std::string key = py::str(item.first);
+      std::optional<Vec3>* slot = key == "start"    ? &parsed.start
+                                  : key == "target" ? &parsed.target
+                                                    : nullptr;
+      if (slot == nullptr) {
+        const std::string near = NearestName(key, keys);
+        throw py::value_error(who_ + ": reset: unknown option '" + key + "'" +
+                              (near.empty() ? "" : "; did you mean '" + near + "'?") +
+                              " (options: start, target)");
+      }
+      if (item.second.is_none()) continue;
+      std::vector<double> xyz;
+      try {
+        xyz = item.second.cast<std::vector<double>>();
+      } catch (const py::cast_error&) {
+      }
+      if (xyz.size() != 3) {
+        throw py::value_error(who_ + ": reset: options['" + key + "'] " +
+                              py::repr(item.second).cast<std::string>() +
+                              ": expected three numbers [m]");
+      }
+      *slot = Vec3(xyz[0], xyz[1], xyz[2]);
+    }
+    return parsed;
+  }
+
   static std::string Shape(const py::array& a) {
     std::string s = "(";
     for (py::ssize_t i = 0; i < a.ndim(); ++i) {
@@ -141,17 +185,13 @@ void BindEnvs(py::module_& m) {
       .def_property_readonly("observation_size", &EnvCore::observation_size)
       .def_property_readonly("action_size", &EnvCore::action_size)
       .def_property_readonly("quad_params", &EnvCore::quad_params)
-      .def("reset", &EnvCore::Reset, py::arg("seeds"))
+      .def_property_readonly("observation_names", &EnvCore::observation_names)
+      .def_property_readonly("reward_terms", &EnvCore::reward_terms)
+      .def("reset", &EnvCore::Reset, py::arg("seeds"), py::arg("options") = py::none())
       .def("reset_some", &EnvCore::ResetSome, py::arg("worlds"))
       .def("step", &EnvCore::Step, py::arg("actions"))
       .def("render", &EnvCore::Render, py::arg("world"), py::arg("width"), py::arg("height"));
   m.def("env_keys", &EnvKeys);
-  m.def("env_observation_names", [](const py::dict& kwargs) {
-    EnvParams params;
-    ParamsFromKwargs(kwargs, "observation names", &params);
-    return params.ObservationNames();
-  });
-  m.def("env_reward_terms", [] { return RewardTermNames(); });
 }
 
 }  // namespace aerobox

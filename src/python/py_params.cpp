@@ -61,6 +61,17 @@ class KwargsReader : public Archive {
     }
     Fail(f, Repr(v), "expected " + ListOfNames(Quoted(choices)));
   }
+  void Text(const Field& f, std::string* value) override {
+    const py::handle v = Take(f);
+    if (!v) return;
+    if (py::isinstance<py::str>(v)) {
+      *value = v.cast<std::string>();
+    } else if (py::hasattr(v, "__fspath__")) {  // a pathlib.Path
+      *value = py::str(v.attr("__fspath__")());
+    } else {
+      Fail(f, Repr(v), "expected a str or a path");
+    }
+  }
 
   // Every argument not taken: a TypeError naming the nearest field.
   void RefuseTheRest() const {

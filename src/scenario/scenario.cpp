@@ -14,7 +14,7 @@
 #include "control/controllers.h"
 #include "map/map_reader.h"
 #include "planning/planner.h"
-#include "scenario/read_file.h"
+#include "map/read_file.h"
 #include "scenario/toml_fields.h"
 #include "scene/scene_mjcf.h"
 #include "vehicle/quad_params.h"

@@ -12,7 +12,7 @@
 
 #include "common/error.h"
 #include "common/quoting.h"
-#include "scenario/read_file.h"
+#include "map/read_file.h"
 #include "scenario/toml_fields.h"
 
 namespace aerobox {

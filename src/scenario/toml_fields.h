@@ -82,6 +82,11 @@ class TomlFields : public Archive {
     }
     *value = *text;
   }
+  void Text(const Field& field, std::string* value) override {
+    if (const toml::node* node = Find(field)) {
+      *value = toml_read::Text(*node, file_, prefix_ + field.name);
+    }
+  }
 
  private:
   const toml::node* Find(const Field& field) const {

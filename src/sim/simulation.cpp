@@ -75,7 +75,31 @@ Simulation::Simulation(MjModelPtr model, const std::string& source) : model_(std
                        "the rotor actuator has no motor-lag filter");
     }
   }
+  made_.mass = model_->body_mass[body_id_];
+  for (int k = 0; k < 3; ++k) made_.inertia[k] = model_->body_inertia[3 * body_id_ + k];
+  for (int i = 0; i < kNumRotors; ++i) {
+    const int a = actuator_ids_[i];
+    made_.gain[i] = model_->actuator_gainprm[mjNGAIN * a];
+    made_.yaw[i] = model_->actuator_gear[6 * a + 5];
+    made_.lag[i] = model_->actuator_dynprm[mjNDYN * a];
+    made_.limit[i] = model_->actuator_ctrlrange[2 * a + 1];
+  }
   mj_forward(model_.get(), data_.get());
+}
+
+void Simulation::ScaleVehicle(const VehicleScaling& s) {
+  mjModel* m = model_.get();
+  m->body_mass[body_id_] = made_.mass * s.mass;
+  for (int k = 0; k < 3; ++k) m->body_inertia[3 * body_id_ + k] = made_.inertia[k] * s.inertia[k];
+  for (int i = 0; i < kNumRotors; ++i) {
+    const int a = actuator_ids_[i];
+    m->actuator_gainprm[mjNGAIN * a] = made_.gain[i] * s.thrust[i];
+    m->actuator_gear[6 * a + 5] = made_.yaw[i] * s.yaw_moment[i];
+    m->actuator_dynprm[mjNDYN * a] = made_.lag[i] * s.motor_lag[i];
+    m->actuator_ctrlrange[2 * a + 1] = made_.limit[i] * s.rotor_limit[i];
+  }
+  mj_setConst(m, data_.get());
+  ResetData();
 }
 
 Simulation Simulation::Clone() const {

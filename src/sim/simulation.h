@@ -30,6 +30,19 @@ struct VehicleContact {
   double distance = 0.0;   // signed distance [m]; negative is penetration
 };
 
+// Changes to the vehicle's physics, as factors of the values the simulation was made with (1
+// changes nothing): what domain randomisation varies from one episode to the next while the
+// controller keeps the nominal vehicle. Per rotor: the thrust it produces per newton commanded,
+// its reaction moment, its motor lag's time constant and its largest command.
+struct VehicleScaling {
+  double mass = 1.0;
+  Vec3 inertia = Vec3::Ones();  // per principal axis
+  Vec4 thrust = Vec4::Ones();
+  Vec4 yaw_moment = Vec4::Ones();
+  Vec4 motor_lag = Vec4::Ones();
+  Vec4 rotor_limit = Vec4::Ones();
+};
+
 class Simulation {
  public:
   // Loads MJCF text; `source` names it in messages. Throws InputError with MuJoCo's message
@@ -60,6 +73,10 @@ class Simulation {
   Simulation Clone() const;
   // Back to the data as loaded: time 0, the model's initial state, no contacts, no warnings.
   void ResetData();
+
+  // Sets the vehicle's physics to the made values times `scaling` (not cumulative), and
+  // resets the data as ResetData does (MuJoCo's constants follow the new mass: mj_setConst).
+  void ScaleVehicle(const VehicleScaling& scaling);
 
   State VehicleState() const;
   // Places the vehicle and recomputes derived quantities (mj_forward).
@@ -100,6 +117,12 @@ class Simulation {
   std::array<int, 4> actuator_ids_{};
   std::array<int, 4> act_adr_{};                 // each rotor's motor-lag state in mjData::act
   std::array<int, mjNWARNING> warnings_seen_{};  // mjData::warning[i].number already reported
+  // the vehicle's values as made, which ScaleVehicle scales
+  struct Made {
+    double mass = 0.0;
+    Vec3 inertia = Vec3::Zero();
+    Vec4 gain = Vec4::Zero(), yaw = Vec4::Zero(), lag = Vec4::Zero(), limit = Vec4::Zero();
+  } made_;
 };
 
 }  // namespace aerobox

@@ -1,5 +1,6 @@
-"""aerobox.envs: Gymnasium's own checker, the vector environment against lone ones, a scripted
-policy that hovers and a random one that does not, and every bad input. Run with the project
+"""aerobox.envs: Gymnasium's own checker for every id, action and attitude, the vector
+environment against lone ones (Hover, Track, Navigate), a scripted policy that hovers and a
+random one that does not, reset's options, and every bad input. Run with the project
 environment's python (.venv: Gymnasium from PyPI)."""
 
 import subprocess
@@ -12,7 +13,7 @@ import numpy as np
 from gymnasium.utils.env_checker import check_env
 
 import aerobox.envs
-from aerobox.envs import HoverEnv, HoverVectorEnv
+from aerobox.envs import AeroboxEnv, AeroboxVectorEnv, HoverEnv, HoverVectorEnv
 
 G = 9.81
 
@@ -27,7 +28,7 @@ def quiet_check(env):
 
 class Checker(unittest.TestCase):
     def test_gymnasium_s_checker_passes_every_action_and_attitude(self):
-        for action in ("thrusts", "ctbm", "ctbr", "ctatt"):
+        for action in ("thrusts", "ctbm", "ctbr", "ctatt", "velocity"):
             for attitude in ("matrix", "quaternion"):
                 with self.subTest(action=action, attitude=attitude):
                     env = gym.make(aerobox.envs.HOVER, action=action, attitude=attitude)
@@ -35,6 +36,24 @@ class Checker(unittest.TestCase):
                     size = 6 + (9 if attitude == "matrix" else 4) + 3 + 4
                     self.assertEqual(env.observation_space.shape, (size,))
                     self.assertEqual(len(env.unwrapped.observation_names), size)
+
+    def test_gymnasium_s_checker_passes_track_and_navigate(self):
+        for env_id, extra in ((aerobox.envs.TRACK, 6 + 3 * 9), (aerobox.envs.NAVIGATE, 16 + 2)):
+            with self.subTest(env_id=env_id):
+                env = gym.make(env_id, render_mode="rgb_array", width=80, height=60)
+                quiet_check(env.unwrapped)
+                self.assertEqual(env.observation_space.shape, (22 + extra,))
+                env.reset(seed=2)
+                self.assertEqual(env.render().shape, (60, 80, 3))
+        env = gym.make(aerobox.envs.NAVIGATE)
+        self.assertEqual(env.unwrapped.reward_terms,
+                         ["alive", "progress", "velocity", "rate", "action", "arrival"])
+        self.assertEqual(env.unwrapped.observation_names[-3:],
+                         ["range15", "range_down", "range_up"])
+        track = gym.make(aerobox.envs.TRACK, track_points=2).unwrapped
+        self.assertEqual(track.observation_names[22:28],
+                         ["ref_vx", "ref_vy", "ref_vz", "ref_ax", "ref_ay", "ref_az"])
+        self.assertEqual(track.observation_names[-3:], ["ref2_ax", "ref2_ay", "ref2_az"])
 
     def test_the_observation_is_what_the_docs_say(self):
         env = HoverEnv(attitude="quaternion", target=[1.0, 2.0, 3.0])
@@ -63,10 +82,10 @@ class Checker(unittest.TestCase):
         self.assertGreater(frame.std(), 5.0)  # not a blank picture
 
 
-def run_single(seed, actions, **params):
+def run_single(seed, actions, env_id=aerobox.envs.HOVER, **params):
     """A lone environment's rows for `actions` (steps x 4), resetting (no seed) when an
     episode ends, as a vector world does on the next step."""
-    env = HoverEnv(**params)
+    env = AeroboxEnv(env_id, **params)
     obs, _ = env.reset(seed=seed)
     rows, ended = [], False
     for a in actions:
@@ -92,7 +111,7 @@ class Vector(unittest.TestCase):
 
     def run_vector(self, n, seed, actions, threads):
         envs = gym.make_vec(aerobox.envs.HOVER, num_envs=n, threads=threads, **self.PARAMS)
-        self.assertIsInstance(envs, HoverVectorEnv)
+        self.assertIsInstance(envs, AeroboxVectorEnv)
         obs, _ = envs.reset(seed=seed)
         rows = []
         for a in actions:
@@ -112,6 +131,29 @@ class Vector(unittest.TestCase):
                 np.testing.assert_array_equal(mine[0], theirs[0][i], err_msg=f"world {i} step {k}")
                 self.assertEqual(mine[1], theirs[1][i])
                 self.assertEqual((mine[2], mine[3]), (theirs[2][i], theirs[3][i]))
+
+    def test_track_and_navigate_worlds_are_lone_environments_too(self):
+        # Track with every domain randomisation on: the episodes' draws are the world's own
+        randomised = dict(episode_time=0.5, vary_mass=0.2, vary_thrust=0.1, vary_motor_lag=0.3,
+                          wind_speed=3.0, wind_turbulence=0.5, sensors=True,
+                          vary_sensor_noise=0.5)
+        for env_id, params in ((aerobox.envs.TRACK, randomised),
+                               (aerobox.envs.NAVIGATE, dict(episode_time=0.5, forest_trees=60,
+                                                            goal_distance=2.0))):
+            with self.subTest(env_id=env_id):
+                n, seed, steps = 3, 21, 120
+                actions = self.actions(n, steps)
+                envs = gym.make_vec(env_id, num_envs=n, threads=2, **params)
+                self.assertIsInstance(envs, AeroboxVectorEnv)
+                envs.reset(seed=seed)
+                rows = [envs.step(a)[:4] for a in actions]
+                self.assertGreater(sum(int(np.sum(r[2] | r[3])) for r in rows), 3)
+                for i in range(n):
+                    single = run_single(seed + i, actions[:, i], env_id, **params)
+                    for k, (mine, theirs) in enumerate(zip(single, rows)):
+                        np.testing.assert_array_equal(mine[0], theirs[0][i],
+                                                      err_msg=f"world {i} step {k}")
+                        self.assertEqual(mine[1], theirs[1][i])
 
     def test_the_number_of_threads_and_a_busy_machine_change_nothing(self):
         n, steps = 9, 120
@@ -196,6 +238,23 @@ class Policies(unittest.TestCase):
             self.assertLess(len(d), 300)
 
 
+class Options(unittest.TestCase):
+    def test_reset_s_options_set_the_start_and_the_target(self):
+        env = HoverEnv()
+        obs, _ = env.reset(seed=3, options={"start": [0.5, 0.0, 1.0], "target": [0, 0, 2]})
+        np.testing.assert_allclose(obs[:3], [0.5, 0.0, -1.0], atol=1e-6)
+        nav = gym.make(aerobox.envs.NAVIGATE, forest_trees=0).unwrapped
+        obs, _ = nav.reset(seed=1, options={"start": [2, 2, 1], "target": [6, 2, 1]})
+        np.testing.assert_allclose(obs[:3], [-4.0, 0.0, 0.0], atol=1e-6)
+        # the ranges from (2, 2, 1) in the empty 10 m forest: its bounds and floor
+        ranges = dict(zip(nav.observation_names[22:], obs[22:]))
+        self.assertAlmostEqual(ranges["range0"], 4.0, places=5)   # +x: the reach
+        self.assertAlmostEqual(ranges["range8"], 2.0, places=5)   # -x: the bound at x = 0
+        self.assertAlmostEqual(ranges["range_down"], 1.0, places=5)  # the floor
+        with self.assertRaisesRegex(ValueError, r"is not free"):
+            nav.reset(options={"target": [0.01, 5, 1]})  # against the bound
+
+
 class BadInputs(unittest.TestCase):
     def test_each_names_the_environment_the_field_and_the_value(self):
         cases = [
@@ -207,6 +266,9 @@ class BadInputs(unittest.TestCase):
             (dict(target=[0, 0]), ValueError, r"argument 'target' .* expected three numbers"),
             (dict(control_rate=300), ValueError, r"control_rate 300.* must divide"),
             (dict(target=[0, 0, 0.5]), ValueError, r"target's height"),
+            (dict(task="navigate", map="no/such.json"), ValueError, r"map 'no/such.json'"),
+            (dict(task="fly"), ValueError, r"argument 'task' = 'fly': expected 'hover', "
+                                           r"'navigate' or 'track'"),
         ]
         for params, error, pattern in cases:
             with self.subTest(params=params):
@@ -226,8 +288,12 @@ class BadInputs(unittest.TestCase):
             env.step([0, 0, np.nan, 0])
         with self.assertRaisesRegex(ValueError, r"action\[0\]\[0\] = 1.5"):
             env.step([1.5, 0, 0, 0])
-        with self.assertRaisesRegex(ValueError, r"options \{'mass': 1\}"):
-            env.reset(options={"mass": 1})
+        with self.assertRaisesRegex(ValueError, r"unknown option 'targt'; did you mean 'target'"):
+            env.reset(options={"targt": [0, 0, 1]})
+        with self.assertRaisesRegex(ValueError, r"options\['start'\] \[0, 0\]: expected three"):
+            env.reset(options={"start": [0, 0]})
+        with self.assertRaisesRegex(ValueError, r"options\[\"start\"\] \[0, 0, -1\]"):
+            env.reset(options={"start": [0, 0, -1]})
         with self.assertRaisesRegex(ValueError, r"seed -1: expected an integer"):
             env.reset(seed=-1)
         envs = HoverVectorEnv(num_envs=2)

@@ -1,6 +1,9 @@
 // Physics cross-checks: MuJoCo's response to rotor thrusts against the allocation matrix.
 #include <doctest/doctest.h>
 
+#include <cmath>
+#include <vector>
+
 #include "common/error.h"
 #include "scene/scene_mjcf.h"
 #include "sim/mujoco_messages.h"
@@ -113,6 +116,72 @@ TEST_CASE("loading errors are InputErrors naming the source") {
   CHECK_THROWS_AS(Simulation::FromXml("<mujoco><worldbody><geom size='1'/>", "broken"), InputError);
   CHECK_THROWS_WITH(Simulation::FromXml("<mujoco/>", "empty"),
                     doctest::Contains("quad: the model has no element"));
+}
+
+}  // namespace aerobox
+
+namespace aerobox {
+namespace {
+
+// `steps` of uneven, varying commands [N] from a tilted, turning start; the states along.
+std::vector<State> Fly(Simulation sim, double command_scale, int steps) {
+  State start;
+  start.p_W = Vec3(0, 0, 1);
+  start.q_WB = Quat(Eigen::AngleAxisd(0.2, Vec3(1, 1, 0).normalized()));
+  start.w_B = Vec3(0.3, -0.2, 0.5);
+  sim.SetVehicleState(start);
+  std::vector<State> states;
+  for (int k = 0; k < steps; ++k) {
+    const Vec4 c(0.18 + 0.05 * std::sin(0.01 * k), 0.2, 0.21 + 0.04 * std::cos(0.02 * k), 0.19);
+    sim.Step(c * command_scale);
+    states.push_back(sim.VehicleState());
+  }
+  return states;
+}
+
+void CheckSame(const std::vector<State>& a, const std::vector<State>& b, double tolerance) {
+  REQUIRE(a.size() == b.size());
+  for (size_t k = 0; k < a.size(); ++k) {
+    CHECK((a[k].p_W - b[k].p_W).norm() < tolerance);
+    CHECK(a[k].q_WB.angularDistance(b[k].q_WB) < tolerance);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("a scaled vehicle flies as a model made with the scaled values") {
+  const QuadParams nominal;
+  QuadParams varied = nominal;
+  varied.mass *= 1.1;
+  varied.inertia = nominal.inertia.cwiseProduct(Vec3(0.95, 1.05, 1.1));
+  varied.yaw_moment_per_thrust *= 0.8;
+  varied.motor_time_constant *= 1.3;
+  varied.max_rotor_thrust *= 0.9;
+  VehicleScaling scaling;
+  scaling.mass = 1.1;
+  scaling.inertia = Vec3(0.95, 1.05, 1.1);
+  scaling.yaw_moment = Vec4::Constant(0.8);
+  scaling.motor_lag = Vec4::Constant(1.3);
+  scaling.rotor_limit = Vec4::Constant(0.9);
+  Simulation scaled = Simulation::FromXml(VehicleModelMjcf(nominal), "nominal");
+  scaled.ScaleVehicle(scaling);
+  const Simulation made = Simulation::FromXml(VehicleModelMjcf(varied), "varied");
+  const std::vector<State> a = Fly(scaled.Clone(), 1.0, 2000), b = Fly(made.Clone(), 1.0, 2000);
+  CheckSame(a, b, 1e-9);
+  CHECK((a.back().p_W -
+         Fly(Simulation::FromXml(VehicleModelMjcf(nominal), "n"), 1.0, 2000).back().p_W)
+            .norm() > 0.01);  // and the scaling did change the flight
+  // not cumulative: scaling back to ones is the nominal vehicle again
+  scaled.ScaleVehicle(VehicleScaling());
+  CheckSame(Fly(scaled.Clone(), 1.0, 500),
+            Fly(Simulation::FromXml(VehicleModelMjcf(nominal), "n"), 1.0, 500), 1e-12);
+  // a rotor that produces 1.1 N per newton commanded flies as the nominal one commanded 1.1 x
+  VehicleScaling stronger;
+  stronger.thrust = Vec4::Constant(1.1);
+  Simulation strong = Simulation::FromXml(VehicleModelMjcf(nominal), "nominal");
+  strong.ScaleVehicle(stronger);
+  CheckSame(Fly(strong.Clone(), 1.0, 1000),
+            Fly(Simulation::FromXml(VehicleModelMjcf(nominal), "n"), 1.1, 1000), 1e-9);
 }
 
 }  // namespace aerobox

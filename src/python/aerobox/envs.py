@@ -2,14 +2,19 @@
 imported:
 
     import gymnasium as gym
-    import aerobox.envs  # registers aerobox/Hover-v0
+    import aerobox.envs  # registers aerobox/Hover-v0, aerobox/Track-v0, aerobox/Navigate-v0
 
     env = gym.make("aerobox/Hover-v0", action="ctbr")           # one world
-    envs = gym.make_vec("aerobox/Hover-v0", num_envs=64)        # 64 worlds stepped in C++ threads
+    envs = gym.make_vec("aerobox/Track-v0", num_envs=64)        # 64 worlds stepped in C++ threads
 
 aerobox/Hover-v0: reach and hold `target` from a random start (uniform within start_radius of
-it, a random speed, tilt, yaw and body rate). The worlds are MuJoCo at a 1 ms step with
-aerobox's inner loops below the action's level; one step() is 1/control_rate seconds.
+it, a random speed, tilt, yaw and body rate).
+aerobox/Track-v0: follow a random circle or figure-8 around `target` (size up to track_size, top
+speed up to track_speed, random heading and phase), given now and track_points samples ahead.
+aerobox/Navigate-v0: reach a random goal through a map of boxes (`map`, an aerobox map file, or
+a seeded random forest), seeing the boxes through range rays; commands a velocity by default.
+The worlds are MuJoCo at a 1 ms step with aerobox's inner loops below the action's level; one
+step() is 1/control_rate seconds.
 
 Action: four numbers in [-1, 1] (float32 Box), by `action`:
     "thrusts": each rotor's thrust, T_i = T_min + (a_i + 1) / 2 (T_max - T_min), rotors in
@@ -17,16 +22,28 @@ Action: four numbers in [-1, 1] (float32 Box), by `action`:
     "ctbm": a_0 the collective thrust (4 x the rotor's scaling above), a_1..a_3 body moments
         [N m]: roll and pitch a_i T_max l (l the arm length), yaw a_3 2 T_max k_m / k_eta;
     "ctbr" (default): a_0 the collective thrust, a_1..a_3 body rates [rad/s] a_i max_rate;
-    "ctatt": a_0 the collective thrust, attitude R_z(pi a_3) R_y(max_tilt a_2) R_x(max_tilt a_1).
+    "ctatt": a_0 the collective thrust, attitude R_z(pi a_3) R_y(max_tilt a_2) R_x(max_tilt a_1);
+    "velocity": a_0..a_2 the world velocity [m/s] a_i max_speed, a_3 the yaw pi a_3 [rad],
+        through aerobox's velocity loop (its cascade's, without the position gain).
 Observation (float32 Box), in this order (observation_names gives the names):
-    p - target [m] (world ENU, z up), v [m/s] (world), the attitude (attitude="matrix": R_WB, the
-    body's FLU axes in the world, row by row; attitude="quaternion": w, x, y, z with w >= 0),
-    body rates w_B [rad/s] (FLU), the last action.
-Reward per step: reward_alive - reward_position |p - target| - reward_velocity |v|
-    - reward_rate |w_B| - reward_action |a|^2; the terms are in `info` by name.
-terminated: a contact (the floor included), further than bounds_radius from the target, a
-    non-finite state or a MuJoCo warning; truncated: episode_time has passed.
-Every parameter is a keyword argument of gym.make (see `keys()` for units, defaults, ranges).
+    p - reference [m] (world ENU, z up; the target, the trajectory now, or the goal), v [m/s]
+    (world), the attitude (attitude="matrix": R_WB, the body's FLU axes in the world, row by row;
+    attitude="quaternion": w, x, y, z with w >= 0), body rates w_B [rad/s] (FLU), the last
+    action; then the task's own: track: the reference's velocity and acceleration now, and for
+    each sample ahead its position minus the vehicle's, velocity and acceleration; navigate: the
+    range [m] along range_rays horizontal world directions (from +x anticlockwise), then down and
+    up, up to range_max, to the nearest box or the map's bounds.
+Reward per step (the terms are in `info` by name): hover and track: reward_alive -
+    reward_position |p - reference| - reward_velocity |v - v_reference| - reward_rate |w_B|
+    - reward_action |a|^2; navigate: reward_alive + reward_progress (the step's approach to the
+    goal) - the same velocity (|v|), rate and action terms + reward_arrival on arriving.
+terminated: a contact (the floor included), a non-finite state or a MuJoCo warning; hover and
+    track: further than bounds_radius from the reference; navigate: outside the map's bounds,
+    or arrived (within arrival_radius of the goal); truncated: episode_time has passed.
+Every parameter is a keyword argument of gym.make (see `keys()` for units, defaults, ranges);
+each id sets a few defaults of its own (ENVIRONMENTS).
+reset(options={"start": [x, y, z], "target": [x, y, z]}) sets the episode's start position
+    and its target (Track: the trajectory's centre; Navigate: the goal), each optional.
 
 Seeds: reset(seed=s) starts the world's own stream at s; reset() goes on from it. A vector
 environment's reset(seed=s) seeds world i with s + i and resets a world whose episode ended on
@@ -50,6 +67,16 @@ except ImportError as e:  # pragma: no cover - said to the user
 from . import _aerobox
 
 HOVER = "aerobox/Hover-v0"
+TRACK = "aerobox/Track-v0"
+NAVIGATE = "aerobox/Navigate-v0"
+# each id's task and the defaults it sets (the rest are the parameters' own, `keys()`)
+ENVIRONMENTS = {
+    HOVER: dict(task="hover"),
+    TRACK: dict(task="track", start_radius=0.25, start_speed=0.25, start_tilt=0.2,
+                start_rate=0.5, bounds_radius=2.0),
+    NAVIGATE: dict(task="navigate", action="velocity", start_speed=0.0, start_tilt=0.1,
+                   start_rate=0.2, episode_time=20.0),
+}
 _SEED_LIMIT = 2**63
 
 
@@ -58,17 +85,17 @@ def keys():
     return _aerobox.env_keys()
 
 
-def _spaces(params, core):
-    names = _aerobox.env_observation_names(params)
+def _core(env_id, params, num_envs, threads):
+    """The C++ worlds of `env_id` with `params` over the id's defaults."""
+    if env_id not in ENVIRONMENTS:
+        raise ValueError(f"env_id {env_id!r}: expected one of {', '.join(ENVIRONMENTS)}")
+    return _aerobox.EnvCore(dict(ENVIRONMENTS[env_id], **params), num_envs, threads, env_id)
+
+
+def _spaces(core):
     observation = spaces.Box(-np.inf, np.inf, (core.observation_size,), np.float32)
     action = spaces.Box(-1.0, 1.0, (core.action_size,), np.float32)
-    return names, observation, action
-
-
-def _check_options(who, options):
-    if options is not None and (not isinstance(options, dict) or options):
-        raise ValueError(f"{who}: reset: options {options!r}: this environment takes none yet "
-                         "(its parameters are gym.make's keyword arguments)")
+    return core.observation_names, observation, action
 
 
 def _seed(who, seed):
@@ -80,41 +107,42 @@ def _seed(who, seed):
     return int(seed)
 
 
-class HoverEnv(gym.Env):
-    """aerobox/Hover-v0, one world (module doc)."""
+class AeroboxEnv(gym.Env):
+    """One world of `env_id` (module doc); params: gym.make's keyword arguments."""
 
     metadata = {"render_modes": ["rgb_array"], "render_fps": 30}
 
-    def __init__(self, render_mode=None, width=320, height=240, **params):
+    def __init__(self, env_id=HOVER, render_mode=None, width=320, height=240, **params):
         if render_mode not in (None, "rgb_array"):
-            raise ValueError(f"{HOVER}: render_mode {render_mode!r}: expected None or 'rgb_array'")
-        self._core = _aerobox.EnvCore(params, 1, 1, HOVER)
-        self.observation_names, self.observation_space, self.action_space = \
-            _spaces(params, self._core)
-        self.reward_terms = _aerobox.env_reward_terms()
+            raise ValueError(f"{env_id}: render_mode {render_mode!r}: expected None or "
+                             "'rgb_array'")
+        self.env_id = env_id
+        self._core = _core(env_id, params, 1, 1)
+        self.observation_names, self.observation_space, self.action_space = _spaces(self._core)
+        self.reward_terms = self._core.reward_terms
         self.quad_params = self._core.quad_params  # the vehicle, as RotorPy's dict
         self.render_mode, self._size = render_mode, (int(width), int(height))
         self._seeded = False
         self._ended = None  # None: never reset
 
     def reset(self, *, seed=None, options=None):
-        seed = _seed(HOVER, seed)
-        _check_options(HOVER, options)
+        seed = _seed(self.env_id, seed)
         super().reset(seed=seed)
         if seed is None and not self._seeded:
             seed = int(self.np_random.integers(_SEED_LIMIT))
+        obs = self._core.reset([seed], options)[0]  # bad options leave the world as it was
         self._seeded = True
         self._ended = False
-        return self._core.reset([seed])[0], {}
+        return obs, {}
 
     def step(self, action):
         if self._ended is None:
-            raise gym.error.ResetNeeded(f"{HOVER}: step before reset(): call reset() first")
+            raise gym.error.ResetNeeded(f"{self.env_id}: step before reset(): call reset() first")
         if self._ended:
-            raise gym.error.ResetNeeded(f"{HOVER}: the episode has ended: call reset()")
+            raise gym.error.ResetNeeded(f"{self.env_id}: the episode has ended: call reset()")
         a = np.asarray(action, dtype=np.float64)
         if a.shape != self.action_space.shape:
-            raise ValueError(f"{HOVER}: step: the action has shape {a.shape}, expected "
+            raise ValueError(f"{self.env_id}: step: the action has shape {a.shape}, expected "
                              f"{self.action_space.shape}")
         obs, reward, terminated, truncated, terms = self._core.step(a.reshape(1, -1))
         self._ended = bool(terminated[0] or truncated[0])
@@ -127,53 +155,54 @@ class HoverEnv(gym.Env):
         return self._core.render(0, *self._size)
 
 
-class HoverVectorEnv(VectorEnv):
-    """aerobox/Hover-v0, num_envs worlds stepped in one call in C++ threads (module doc);
-    threads: how many (default: the machine's cores)."""
+class AeroboxVectorEnv(VectorEnv):
+    """num_envs worlds of `env_id` stepped in one call in C++ threads (module doc); threads:
+    how many (default: the machine's cores)."""
 
     metadata = {"render_modes": ["rgb_array"], "render_fps": 30, "autoreset_mode": "next_step"}
 
-    def __init__(self, num_envs=1, threads=None, render_mode=None, width=320, height=240,
-                 **params):
+    def __init__(self, num_envs=1, env_id=HOVER, threads=None, render_mode=None, width=320,
+                 height=240, **params):
         if render_mode not in (None, "rgb_array"):
-            raise ValueError(f"{HOVER}: render_mode {render_mode!r}: expected None or 'rgb_array'")
-        if isinstance(num_envs, bool) or not isinstance(num_envs, (int, np.integer)) \
-                or num_envs < 1:
-            raise ValueError(f"{HOVER}: num_envs {num_envs!r}: expected an integer >= 1")
-        threads = os.cpu_count() or 1 if threads is None else threads
-        self._core = _aerobox.EnvCore(params, int(num_envs), int(threads), HOVER)
-        self.num_envs = int(num_envs)
+            raise ValueError(f"{env_id}: render_mode {render_mode!r}: expected None or "
+                             "'rgb_array'")
+        self.env_id = env_id
+        self.num_envs = _num_envs(env_id, num_envs)
+        threads = (os.cpu_count() or 1) if threads is None else threads
+        self._core = _core(env_id, params, self.num_envs, int(threads))
         self.observation_names, self.single_observation_space, self.single_action_space = \
-            _spaces(params, self._core)
+            _spaces(self._core)
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
-        self.reward_terms = _aerobox.env_reward_terms()
+        self.reward_terms = self._core.reward_terms
         self.render_mode, self._size = render_mode, (int(width), int(height))
         self._seeded = False
         self._reset = False
 
     def reset(self, *, seed=None, options=None):
-        _check_options(HOVER, options)
+        who = self.env_id
         if seed is None:
             seeds = [None] * self.num_envs
         elif isinstance(seed, (list, tuple)):
             if len(seed) != self.num_envs:
-                raise ValueError(f"{HOVER}: reset: {len(seed)} seeds for {self.num_envs} worlds")
-            seeds = [_seed(HOVER, s) for s in seed]
+                raise ValueError(f"{who}: reset: {len(seed)} seeds for {self.num_envs} worlds")
+            seeds = [_seed(who, s) for s in seed]
         else:
-            first = _seed(HOVER, seed)
+            first = _seed(who, seed)
             seeds = [first + i for i in range(self.num_envs)]
         if seed is not None:
             self._np_random, _ = gym.utils.seeding.np_random(seeds[0])
         if not self._seeded:
             draw = self.np_random
             seeds = [s if s is not None else int(draw.integers(_SEED_LIMIT)) for s in seeds]
+        obs = self._core.reset(seeds, options)  # options apply to every world
         self._seeded = self._reset = True
-        return self._core.reset(seeds), {}
+        return obs, {}
 
     def step(self, actions):
         if not self._reset:
-            raise gym.error.ResetNeeded(f"{HOVER}: step before reset(): call reset() first")
+            raise gym.error.ResetNeeded(f"{self.env_id}: step before reset(): call reset() "
+                                        "first")
         obs, rewards, terminated, truncated, terms = self._core.step(actions)
         infos = {}
         for j, name in enumerate(self.reward_terms):
@@ -187,10 +216,34 @@ class HoverVectorEnv(VectorEnv):
         return self._core.render(0, *self._size)
 
 
+class HoverEnv(AeroboxEnv):
+    """aerobox/Hover-v0, one world."""
+
+    def __init__(self, render_mode=None, width=320, height=240, **params):
+        super().__init__(HOVER, render_mode, width, height, **params)
+
+
+class HoverVectorEnv(AeroboxVectorEnv):
+    """aerobox/Hover-v0's worlds stepped together."""
+
+    def __init__(self, num_envs=1, threads=None, render_mode=None, width=320, height=240,
+                 **params):
+        super().__init__(num_envs, HOVER, threads, render_mode, width, height, **params)
+
+
+def _num_envs(who, num_envs):
+    if isinstance(num_envs, bool) or not isinstance(num_envs, (int, np.integer)) \
+            or num_envs < 1:
+        raise ValueError(f"{who}: num_envs {num_envs!r}: expected an integer >= 1")
+    return int(num_envs)
+
+
 def _register():
-    if HOVER not in gym.registry:
-        gym.register(id=HOVER, entry_point="aerobox.envs:HoverEnv",
-                     vector_entry_point="aerobox.envs:HoverVectorEnv")
+    for env_id in ENVIRONMENTS:
+        if env_id not in gym.registry:
+            gym.register(id=env_id, entry_point="aerobox.envs:AeroboxEnv",
+                         vector_entry_point="aerobox.envs:AeroboxVectorEnv",
+                         kwargs={"env_id": env_id})
 
 
 _register()

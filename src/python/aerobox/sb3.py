@@ -2,10 +2,11 @@
 in the same step its episode ends):
 
     from stable_baselines3 import PPO
-    from aerobox.sb3 import HoverVecEnv
+    from aerobox.sb3 import AeroboxVecEnv, HoverVecEnv
 
     env = HoverVecEnv(num_envs=16)               # gym.make's keyword arguments as well
     model = PPO("MlpPolicy", env).learn(200_000)
+    env = AeroboxVecEnv("aerobox/Track-v0", num_envs=16)   # any of aerobox.envs' ids
 
 The same worlds as aerobox.envs (C++ threads, no Python per world). When a world's episode ends,
 step_wait returns its new start and puts the last observation in info["terminal_observation"],
@@ -22,24 +23,23 @@ try:
 except ImportError as e:  # pragma: no cover - said to the user
     raise ImportError("aerobox.sb3 needs stable-baselines3: pip install stable-baselines3") from e
 
-from . import _aerobox
-from .envs import HOVER, _spaces
+from .envs import HOVER, _core, _num_envs, _spaces
 
 
-class HoverVecEnv(VecEnv):
-    """aerobox/Hover-v0's worlds as an SB3 VecEnv; threads: default the machine's cores."""
+class AeroboxVecEnv(VecEnv):
+    """The worlds of aerobox.envs' `env_id` as an SB3 VecEnv; threads: default the machine's
+    cores; params: gym.make's keyword arguments."""
 
-    def __init__(self, num_envs=1, threads=None, **params):
-        if isinstance(num_envs, bool) or not isinstance(num_envs, (int, np.integer)) \
-                or num_envs < 1:
-            raise ValueError(f"{HOVER}: num_envs {num_envs!r}: expected an integer >= 1")
+    def __init__(self, env_id=HOVER, num_envs=1, threads=None, **params):
+        self.env_id = env_id
+        num_envs = _num_envs(env_id, num_envs)
         threads = (os.cpu_count() or 1) if threads is None else threads
-        self._core = _aerobox.EnvCore(params, int(num_envs), int(threads), HOVER)
+        self._core = _core(env_id, params, num_envs, int(threads))
         self.params = dict(params)
-        self.observation_names, observation, action = _spaces(params, self._core)
+        self.observation_names, observation, action = _spaces(self._core)
         self.render_mode = None
-        super().__init__(int(num_envs), observation, action)
-        self.reward_terms = _aerobox.env_reward_terms()
+        super().__init__(num_envs, observation, action)
+        self.reward_terms = self._core.reward_terms
         self._actions = None
         self._seeded = False
 
@@ -75,10 +75,10 @@ class HoverVecEnv(VecEnv):
         return [getattr(self, attr_name)] * len(self._indices(indices))
 
     def set_attr(self, attr_name, value, indices=None):
-        raise AttributeError(f"{HOVER}: set_attr: the worlds' parameters are fixed when made")
+        raise AttributeError(f"{self.env_id}: set_attr: the worlds' parameters are fixed when made")
 
     def env_method(self, method_name, *args, indices=None, **kwargs):
-        raise AttributeError(f"{HOVER}: env_method: the worlds are C++ objects, with no methods "
+        raise AttributeError(f"{self.env_id}: env_method: the worlds are C++ objects, with no methods "
                              "to call one by one")
 
     def env_is_wrapped(self, wrapper_class, indices=None):
@@ -88,3 +88,10 @@ class HoverVecEnv(VecEnv):
         if indices is None:
             return range(self.num_envs)
         return [indices] if isinstance(indices, int) else indices
+
+
+class HoverVecEnv(AeroboxVecEnv):
+    """aerobox/Hover-v0's worlds as an SB3 VecEnv."""
+
+    def __init__(self, num_envs=1, threads=None, **params):
+        super().__init__(HOVER, num_envs, threads, **params)

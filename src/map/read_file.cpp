@@ -1,4 +1,4 @@
-#include "scenario/read_file.h"
+#include "map/read_file.h"
 
 #include <cerrno>
 #include <cstring>
