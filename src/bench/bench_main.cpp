@@ -167,6 +167,8 @@ const std::vector<BenchSection>& Sections() {
          out << "## Learning environments: steps per second against the bare physics\n\n"
              << std::flush;
          RunRlBenchmark(out, c.size);
+         out << "\n";
+         RunRlPeers(out, c.size);
        }},
       {"robustness",
        [](const BenchContext& c, std::ostream& out) {

@@ -38,4 +38,9 @@ void RunRotorPyBenchmark(std::ostream& out, const BenchSize& size) {
             size);
 }
 
+void RunRlPeers(std::ostream& out, const BenchSize& size) {
+  RunScript({AEROBOX_PEERS_PYTHON, AEROBOX_RL_PEERS},
+            "the learning peers (" AEROBOX_RL_PEERS " in " AEROBOX_PEERS_PYTHON ")", out, size);
+}
+
 }  // namespace aerobox

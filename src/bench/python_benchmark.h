@@ -1,4 +1,4 @@
-// aerobox bench --sections python and rotorpy: benchmarks written in Python, run with the build's
+// aerobox bench --sections python, rotorpy and rl's peers: benchmarks written in Python, run with the build's
 // aerobox package, their tables copied to `out`.
 #pragma once
 
@@ -19,5 +19,10 @@ void RunPythonBenchmark(const std::string& window_scenario, std::ostream& out,
 // tools/setup.sh installs RotorPy): RotorPy's Environment against aerobox.rotorpy's on the same
 // scripts. A smoke run flies one script for 1 s.
 void RunRotorPyBenchmark(std::ostream& out, const BenchSize& size);
+
+// rl, its peers: src/bench/rl_peers.py, with the project environment's python: RotorPy's
+// batched learning environment against aerobox's vector environment. A smoke run: 4 worlds, 5
+// steps.
+void RunRlPeers(std::ostream& out, const BenchSize& size);
 
 }  // namespace aerobox

@@ -37,6 +37,8 @@ if grep -q "skipped" "$work/tables.md"; then
   echo "FAIL: a section was skipped"
   exit 1
 fi
+grep -q "aerobox / RotorPy |$" "$work/tables.md" ||
+  { cat "$work/tables.md"; echo "FAIL: the learning environments' peers table is missing"; exit 1; }
 grep -q "^| navigate |" "$work/tables.md" ||
   { cat "$work/tables.md"; echo "FAIL: the learning environments' table lacks navigate"; exit 1; }
 # a misspelt section is refused before any work, naming the one it looks like
