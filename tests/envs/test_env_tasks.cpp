@@ -15,6 +15,7 @@
 #include "control/position_control.h"
 #include "envs/env_batch.h"
 #include "geometry/collision_world.h"
+#include "planning/rrt_star.h"
 #include "vehicle/model_names.h"
 
 namespace aerobox {
@@ -245,6 +246,56 @@ TEST_CASE("navigate: free endpoints apart, arrival by a straight flight, a tree 
     crashes += s.terminated && s.terms[5] == 0.0;
   }
   CHECK(crashes >= 1);
+}
+
+TEST_CASE("navigate: a planned path flown with the velocity action arrives through the trees") {
+  // the scripted policy: aerobox's RRT* through the forest (the same clearance as the draws),
+  // then pure pursuit along the path at 1 m/s with the velocity action
+  EnvParams params = Navigate();
+  One env(params);
+  CollisionParams collision;
+  collision.vehicle_size = params.Vehicle().collision_size;
+  collision.clearance = 0.15;
+  const CollisionWorld world(env.batch.map(), collision);
+  const Validity validity{[&](const Vec3& p) { return world.IsPointFree(p); },
+                          [&](const Vec3& a, const Vec3& b) { return world.IsSegmentFree(a, b); }};
+  RrtStarParams rrt;
+  rrt.time_budget = 100.0;
+  rrt.max_iterations = 2000;
+  rrt.max_search_iterations = 100000;
+  int arrived = 0;
+  for (std::uint64_t seed = 0; seed < 5; ++seed) {
+    CAPTURE(seed);
+    env.Reset(seed);
+    const Vec3 goal = env.world().task().Reference(0.0);
+    const PlanResult plan =
+        PlanRrtStar(env.world().state().p_W, goal, world.free_bounds(), validity, rrt);
+    REQUIRE(plan.status == PlanStatus::kSolved);
+    size_t next = 1;
+    EnvStep step;
+    while (!step.terminated && !step.truncated) {
+      const Vec3 p = env.world().seen().p_W;
+      while (next + 1 < plan.path.size() && (plan.path[next] - p).norm() < 0.3) ++next;
+      const Vec3 to = plan.path[next] - p;
+      const Vec3 v = to.norm() > 1e-9 ? to.normalized() * std::min(1.0, 2.0 * to.norm()) : to;
+      step = env.Step({Clamp(v.x() / params.max_speed), Clamp(v.y() / params.max_speed),
+                       Clamp(v.z() / params.max_speed), 0.0});
+    }
+    CHECK(step.terminated);
+    arrived += step.terms[5] == params.reward_arrival;
+  }
+  CHECK(arrived == 5);
+  // a random policy does not arrive
+  std::mt19937_64 rng(2);
+  std::uniform_real_distribution<double> any(-1.0, 1.0);
+  for (std::uint64_t seed = 0; seed < 5; ++seed) {
+    env.Reset(seed);
+    EnvStep step;
+    while (!step.terminated && !step.truncated) {
+      step = env.Step({any(rng), any(rng), any(rng), any(rng)});
+    }
+    CHECK(step.terms[5] == 0.0);
+  }
 }
 
 TEST_CASE("reset's options set the start and the target, and bad ones change nothing") {
