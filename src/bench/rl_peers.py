@@ -1,15 +1,20 @@
-"""aerobox bench --sections rl, its peers: RotorPy 3.0's batched QuadrotorEnv (rotorpy.learning,
-torch on the CPU) against aerobox's vector environment, both stable-baselines3 VecEnvs, in one
-process, at the same 100 Hz control rate, collective thrust and body rates, the Crazyflie.
+"""aerobox bench --sections rl, its peers, in one process:
 
-Each steps N worlds with a constant action for the same number of steps, its episodes ending
-and restarting as in training (RotorPy's after 5 s, aerobox's after 10 s); the table gives
-environment steps per second (worlds x steps / wall s) and aerobox's over RotorPy's. RotorPy
-integrates its batched dynamics once per step with torchdiffeq's default solver (dopri5,
-adaptive), aerobox with MuJoCo at 1 ms (10 steps) and its inner loops at each. Medians of 3.
-Run by aerobox-bench with the project environment's python (.venv: RotorPy, torchdiffeq and
-roma from PyPI on Debian's torch) and PYTHONPATH set to the build's package; argv: --smoke for
-4 worlds and 5 steps.
+1. RotorPy 3.0's batched QuadrotorEnv (rotorpy.learning, torch on the CPU) against aerobox's
+   vector environment, both stable-baselines3 VecEnvs, at the same 100 Hz control rate,
+   collective thrust and body rates, the Crazyflie. RotorPy integrates its batched dynamics once
+   per step with torchdiffeq's default solver (dopri5, adaptive), aerobox with MuJoCo at 1 ms
+   (10 steps) and its inner loops at each.
+2. PyFlyt 0.29.0's PyFlyt/QuadX-Hover-v4 (PyBullet, as gym-pybullet-drones) in Gymnasium's
+   SyncVectorEnv (PyFlyt has no vector environment of its own) against aerobox's native vector
+   environment (gym.make_vec). PyFlyt's agent rate must divide 120 Hz: it runs at 120 Hz (240 Hz
+   physics) and aerobox at 100 Hz, so the ratio is of simulated seconds per wall second.
+
+Each steps N worlds with a constant action near hover, the episodes ending and restarting as in
+training; steps per second are worlds x steps / wall s. Medians of 3. Run by aerobox-bench with
+the project environment's python (.venv: RotorPy, torchdiffeq, roma, PyFlyt, PyBullet from PyPI
+on Debian's torch and numba) and PYTHONPATH set to the build's package; argv: --smoke for 4
+worlds and 5 steps.
 """
 
 import os
@@ -17,31 +22,78 @@ import statistics
 import sys
 import time
 
+import contextlib
+import ctypes
+import io
+import warnings
+
+import gymnasium as gym
 import numpy as np
 import torch
 from rotorpy.learning.quadrotor_environments import make_default_vec_env
 from rotorpy.vehicles.crazyflie_params import quad_params
 
+import aerobox.envs  # noqa: F401  (registers aerobox's ids)
 from aerobox.sb3 import AeroboxVecEnv
 
+PYFLYT_HZ = 120  # PyFlyt/QuadX-Hover-v4's agent rate (it must divide 120)
 
-def rate(env, n, steps):
-    """Environment steps per second of `env` (n worlds) over `steps` steps."""
+
+def rate(env, n, steps, warm_up=5):
+    """Environment steps per second of `env` (n worlds) over `steps` steps, after `warm_up`."""
     env.seed(1)
     env.reset()
     action = np.zeros((n, 4), np.float32)
     action[:, 0] = 0.1  # a little above the middle of the thrust range: near hover for both
+    for _ in range(warm_up):
+        env.step(action)
     begin = time.perf_counter()
     for _ in range(steps):
         env.step(action)
     return n * steps / (time.perf_counter() - begin)
 
 
-def main(argv):
-    smoke = "--smoke" in argv
-    threads = os.cpu_count() or 1
-    torch.set_num_threads(threads)
-    sizes, repetitions = ([4], 1) if smoke else ([16, 64, 256], 3)
+@contextlib.contextmanager
+def quiet():
+    """PyBullet prints from C on every world it makes (argv[0]=...): the table's stdout is kept
+    clean by pointing file descriptor 1 elsewhere meanwhile."""
+    sys.stdout.flush()
+    saved = os.dup(1)
+    with open(os.devnull, "w") as null:
+        os.dup2(null.fileno(), 1)
+    try:
+        with contextlib.redirect_stdout(io.StringIO()), warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            yield
+    finally:
+        ctypes.CDLL(None).fflush(None)  # C's own buffer, before fd 1 is back
+        os.dup2(saved, 1)
+        os.close(saved)
+
+
+def gym_rate(envs, action, steps, warm_up=10):
+    """Environment steps per second of a Gymnasium vector environment over `steps` steps, after
+    `warm_up` (PyFlyt compiles its controllers with numba at its first steps)."""
+    actions = np.repeat(action[None], envs.num_envs, axis=0).astype(np.float32)
+    with quiet():  # PyFlyt prints on its resets
+        envs.reset(seed=1)
+        for _ in range(warm_up):
+            envs.step(actions)
+        begin = time.perf_counter()
+        for _ in range(steps):
+            envs.step(actions)
+        return envs.num_envs * steps / (time.perf_counter() - begin)
+
+
+def pyflyt_envs(n):
+    with quiet():  # PyBullet prints its build on import
+        import PyFlyt.gym_envs  # noqa: F401  (registers PyFlyt/*)
+
+        return gym.make_vec("PyFlyt/QuadX-Hover-v4", num_envs=n, vectorization_mode="sync",
+                            agent_hz=PYFLYT_HZ)
+
+
+def rotorpy_table(sizes, repetitions, smoke, threads):
     print(f"RotorPy 3.0's batched QuadrotorEnv (torch {torch.__version__.split('+')[0]}, "
           f"{threads} threads) and aerobox's vector environment (aerobox/Hover-v0, {threads} "
           "threads), both stable-baselines3 VecEnvs at 100 Hz, action cmd_ctbr / ctbr, the "
@@ -57,6 +109,38 @@ def main(argv):
             ours.append(rate(AeroboxVecEnv("aerobox/Hover-v0", n, action="ctbr"), n, steps))
         a, b = statistics.median(theirs), statistics.median(ours)
         print(f"| {n} | {a:.0f} | {b:.0f} | {b / a:.1f} |", flush=True)
+
+
+def pyflyt_table(sizes, repetitions, smoke):
+    print(f"\nPyFlyt 0.29.0's PyFlyt/QuadX-Hover-v4 (PyBullet; {PYFLYT_HZ} Hz, Gymnasium's "
+          "SyncVectorEnv, one thread) and aerobox/Hover-v0 (100 Hz, its own vector environment, "
+          f"gym.make_vec), body rates and thrust. Medians of {repetitions}.\n")
+    print("| worlds | PyFlyt: env steps/s | PyFlyt: simulated s per wall s | aerobox: env steps/s "
+          "| aerobox: simulated s per wall s | aerobox / PyFlyt (simulated s) |")
+    print("|---|---|---|---|---|---|")
+    for n in sizes:
+        steps = 5 if smoke else max(20, 3200 // n)
+        theirs, ours = [], []
+        for _ in range(repetitions):
+            peer = pyflyt_envs(n)
+            hover = np.zeros(peer.single_action_space.shape)
+            hover[-1] = 0.5  # rates 0, thrust near hover
+            theirs.append(gym_rate(peer, hover, steps))
+            peer.close()
+            ours.append(gym_rate(gym.make_vec("aerobox/Hover-v0", num_envs=n, action="ctbr"),
+                                 np.array([0.1, 0.0, 0.0, 0.0]), steps))
+        a, b = statistics.median(theirs), statistics.median(ours)
+        print(f"| {n} | {a:.0f} | {a / PYFLYT_HZ:.0f} | {b:.0f} | {b / 100:.0f} | "
+              f"{(b / 100) / (a / PYFLYT_HZ):.1f} |", flush=True)
+
+
+def main(argv):
+    smoke = "--smoke" in argv
+    threads = os.cpu_count() or 1
+    torch.set_num_threads(threads)
+    sizes, repetitions = ([4], 1) if smoke else ([16, 64, 256], 3)
+    rotorpy_table(sizes, repetitions, smoke, threads)
+    pyflyt_table([4] if smoke else [1, 16, 64], repetitions, smoke)
     return 0
 
 
