@@ -220,20 +220,23 @@ class NavigateTask : public EnvTask {
     rays_.push_back(Vec3::UnitZ());
     EnvRandom probe;
     probe.Seed(0);
-    if (!Endpoints(probe)) {
+    const std::optional<std::pair<Vec3, Vec3>> found = Endpoints(probe);
+    if (!found) {
       const std::string where =
           params.map.empty() ? "the random forest (forest_trees)" : "map '" + params.map + "'";
       throw std::invalid_argument("navigate: no free start and goal " +
                                   FormatNumber(params.goal_distance) + " m apart in " + where +
                                   " after 1000 draws (goal_distance)");
     }
+    fallback_ = *found;
   }
 
   State Begin(EnvRandom& random, const EnvOptions& options) override {
-    std::optional<std::pair<Vec3, Vec3>> ends = Endpoints(random);
+    // a crowded map may give no pair in 1000 draws: then the pair found when the task was made
+    const std::pair<Vec3, Vec3> ends = Endpoints(random).value_or(fallback_);
     State s;
-    s.p_W = ends ? ends->first : world_.free_bounds().Center();
-    goal_ = ends ? ends->second : s.p_W;
+    s.p_W = ends.first;
+    goal_ = ends.second;
     s.v_W = random.InBall(params_.start_speed);
     random.Attitude(params_, &s);
     if (options.start) s.p_W = *options.start;
@@ -306,6 +309,7 @@ class NavigateTask : public EnvTask {
   CollisionWorld world_;
   std::vector<Aabb> boxes_;
   std::vector<Vec3> rays_;
+  std::pair<Vec3, Vec3> fallback_;  // a free start and goal, found when made
   Vec3 goal_;
   double last_distance_ = 0.0;
 };
