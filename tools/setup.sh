@@ -39,8 +39,10 @@ packages=(
   python3-scipy python3-yaml python3-tqdm python3-cvxopt python3-cloudpickle
   python3-typing-extensions
   # training a policy (examples/train_hover.py, tested): Debian's CPU torch 1.13, not PyPI's
-  # multi-GB CUDA build; stable-baselines3 itself is pinned below
-  python3-torch
+  # multi-GB CUDA build; stable-baselines3 itself is pinned below. Torch (and numpy) call the
+  # system's libblas.so.3: without OpenBLAS that is the reference BLAS, and training is 8 times
+  # slower
+  python3-torch libopenblas0-openmp
 )
 if [ "${1:-}" = "--bench" ]; then
   # OMPL 1.5.2 as the planners' reference; its CMake config links these Boost libraries

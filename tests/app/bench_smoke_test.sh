@@ -37,6 +37,8 @@ if grep -q "skipped" "$work/tables.md"; then
   echo "FAIL: a section was skipped"
   exit 1
 fi
+grep -q "^| environment steps | wall time \[s\] | starts held |" "$work/tables.md" ||
+  { cat "$work/tables.md"; echo "FAIL: the training row is missing"; exit 1; }
 grep -q "aerobox / PyFlyt (simulated s) |$" "$work/tables.md" ||
   { cat "$work/tables.md"; echo "FAIL: the PyFlyt table is missing"; exit 1; }
 grep -q "aerobox / RotorPy |$" "$work/tables.md" ||
