@@ -730,14 +730,8 @@ std::string WriteOutputs(const FlightRecord& record, const std::string& out_dir,
   });
 }
 
-}  // namespace
-
-PYBIND11_MODULE(_aerobox, m) {
-  m.doc() = "aerobox's compiled core; use the package `aerobox`";
-  m.attr("__version__") = AEROBOX_VERSION;
-  m.attr("mujoco_version") = mj_versionString();
-  BindEnvs(m);
-
+// aerobox.Map's core: a set-up's map, vehicle and endpoints.
+void BindSetup(py::module_& m) {
   py::class_<FlightSetup, SetupPtr>(m, "Setup")
       .def_property_readonly("name", [](const FlightSetup& s) { return s.name; })
       .def_property_readonly("map_path", [](const FlightSetup& s) { return s.map.source; })
@@ -778,7 +772,10 @@ PYBIND11_MODULE(_aerobox, m) {
              return world.Clearance(PointFrom(point, "point"));
            })
       .def("with_vehicle", &WithVehicle);
+}
 
+// Loading a set-up (a file, or a scenario's text with settings) and planning its path.
+void BindLoadAndPlan(py::module_& m) {
   m.def(
       "_load",
       [](const std::string& path, const py::object& start, const py::object& goal,
@@ -823,7 +820,10 @@ PYBIND11_MODULE(_aerobox, m) {
     result["goal"] = OptionalPoint(plan.goal.used);
     return result;
   });
+}
 
+// aerobox.Trajectory's core: a trajectory through given waypoints.
+void BindTrajectory(py::module_& m) {
   py::class_<Trajectory>(m, "Trajectory")
       .def_property_readonly("duration",
                              [](const Trajectory& t) { return t.result.trajectory.duration(); })
@@ -852,7 +852,10 @@ PYBIND11_MODULE(_aerobox, m) {
     t.result = Checked([&] { return TrajectoryAlong(setup, path); });
     return t;
   });
+}
 
+// Flying: the simulator, the built-in controllers, whole missions and their outputs.
+void BindFlight(py::module_& m) {
   py::class_<FlightRecord, std::shared_ptr<FlightRecord>>(m, "FlightRecord")
       .def_property_readonly("samples", [](const FlightRecord& r) { return r.samples.size(); })
       .def_property_readonly("scenario", [](const FlightRecord& r) { return r.setup->name; });
@@ -884,6 +887,19 @@ PYBIND11_MODULE(_aerobox, m) {
         py::arg("width"), py::arg("height"), py::arg("fps"), py::arg("camera"), py::arg("report"));
   m.def("_load_class", &LoadClass);
   m.def("_fly", &Fly, py::arg("setup"), py::arg("controller"), py::arg("command_kind"));
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_aerobox, m) {
+  m.doc() = "aerobox's compiled core; use the package `aerobox`";
+  m.attr("__version__") = AEROBOX_VERSION;
+  m.attr("mujoco_version") = mj_versionString();
+  BindEnvs(m);
+  BindSetup(m);
+  BindLoadAndPlan(m);
+  BindTrajectory(m);
+  BindFlight(m);
 }
 
 }  // namespace aerobox::python
