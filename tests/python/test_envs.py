@@ -109,8 +109,9 @@ class Vector(unittest.TestCase):
         a[..., 0] = np.clip(a[..., 0] - 0.5, -1, 1)
         return a
 
-    def run_vector(self, n, seed, actions, threads):
-        envs = gym.make_vec(aerobox.envs.HOVER, num_envs=n, threads=threads, **self.PARAMS)
+    def run_vector(self, n, seed, actions, threads, env_id=aerobox.envs.HOVER, params=None):
+        params = self.PARAMS if params is None else params
+        envs = gym.make_vec(env_id, num_envs=n, threads=threads, **params)
         self.assertIsInstance(envs, AeroboxVectorEnv)
         obs, _ = envs.reset(seed=seed)
         rows = []
@@ -158,18 +159,24 @@ class Vector(unittest.TestCase):
     def test_the_number_of_threads_and_a_busy_machine_change_nothing(self):
         n, steps = 9, 120
         actions = self.actions(n, steps)
+        # Hover, and Navigate in a forest with every randomisation and the sensors on
+        navigate = dict(episode_time=0.6, forest_trees=60, goal_distance=2.0, vary_mass=0.2,
+                        vary_thrust=0.1, wind_speed=3.0, wind_turbulence=0.5, sensors=True)
         busy = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(2)]
         try:
-            one = self.run_vector(n, 5, actions, threads=1)
-            three = self.run_vector(n, 5, actions, threads=3)
+            runs = [(self.run_vector(n, 5, actions, threads=1),
+                     self.run_vector(n, 5, actions, threads=3))]
+            runs.append((self.run_vector(n, 5, actions, 1, aerobox.envs.NAVIGATE, navigate),
+                         self.run_vector(n, 5, actions, 3, aerobox.envs.NAVIGATE, navigate)))
         finally:
             for p in busy:
                 p.kill()
                 p.wait()
-        np.testing.assert_array_equal(one[0], three[0])
-        for a, b in zip(one[1], three[1]):
-            for x, y in zip(a, b):
-                np.testing.assert_array_equal(x, y)
+        for one, three in runs:
+            np.testing.assert_array_equal(one[0], three[0])
+            for a, b in zip(one[1], three[1]):
+                for x, y in zip(a, b):
+                    np.testing.assert_array_equal(x, y)
 
     def test_spaces_and_seeds(self):
         envs = HoverVectorEnv(num_envs=3)
