@@ -84,6 +84,8 @@ void EnvParams::Describe(Archive& a) {
            &wind_speed, 0, 20);
   a.Number({"wind_turbulence", "m/s", "per episode: Dryden turbulence up to this intensity"},
            &wind_turbulence, 0, 10);
+  a.Number({"gust_speed", "m/s", "per episode: one gust of a peak up to this, at a random time"},
+           &gust_speed, 0, 20);
   a.Boolean({"drag", "", "body and rotor drag (on whenever there is wind)"}, &drag);
   a.Boolean({"sensors", "", "observe through aerobox's IMU, motion capture and estimator"},
             &sensors);

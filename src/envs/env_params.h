@@ -77,7 +77,10 @@ struct EnvParams {
   double vary_rotor_limit = 0.0;  // the largest thrust command
   double wind_speed = 0.0;        // [m/s] the mean wind at most, horizontal, any direction
   double wind_turbulence = 0.0;   // [m/s] Dryden's horizontal intensity at most (vertical: half)
-  bool drag = false;              // body and rotor drag (on whenever there is wind)
+  // [m/s] a gust's peak at most: one per episode, horizontal, any direction, starting at a
+  // random time of the episode, 1 to 3 s long with 0.5 s rise and fall
+  double gust_speed = 0.0;
+  bool drag = false;  // body and rotor drag (on whenever there is wind)
   // The observation from aerobox's sensors and estimator (an IMU and motion capture at their
   // defaults, docs/scenario-keys.md's [sensors]) instead of the truth; the inner loops fly on
   // it too. vary_sensor_noise: their noise times a factor in [1 - f, 1 + f].

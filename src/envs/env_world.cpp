@@ -45,7 +45,7 @@ EnvWorld::EnvWorld(const EnvParams& params, Simulation sim, const Map& map)
   loop_.control_rate = params.control_rate;
   loop_.inner = ControllerConfig().inner;
   loop_.aero.body_drag = loop_.aero.rotor_drag =
-      params.drag || params.wind_speed > 0 || params.wind_turbulence > 0;
+      params.drag || params.wind_speed > 0 || params.wind_turbulence > 0 || params.gust_speed > 0;
   loop_.sensors.imu.enabled = loop_.sensors.position.enabled = params.sensors;
 }
 
@@ -75,6 +75,14 @@ void EnvWorld::Vary(std::uint64_t seed) {
   loop_.sensors.imu.accel_noise_density = nominal.imu.accel_noise_density * noise;
   loop_.sensors.position.noise = nominal.position.noise * noise;
   loop_.sensors.position.attitude_noise = nominal.position.attitude_noise * noise;
+  Gust gust;
+  gust.start = r.Uniform(0.0, params_.episode_time);
+  gust.duration = r.Uniform(1.0, 3.0);
+  gust.peak = r.Uniform(0.0, params_.gust_speed);
+  const double towards = r.Uniform(-kPi, kPi);
+  gust.direction = Vec3(std::cos(towards), std::sin(towards), 0.0);
+  loop_.wind.gusts.clear();
+  if (gust.peak > 0) loop_.wind.gusts.push_back(gust);
 }
 
 void EnvWorld::Reset(std::optional<std::uint64_t> seed, float* observation,

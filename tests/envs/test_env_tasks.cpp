@@ -392,6 +392,30 @@ TEST_CASE("domain randomisation: each episode's vehicle and wind within their ra
         *std::max_element(masses.begin(), masses.end()));
 }
 
+TEST_CASE("domain randomisation: one gust per episode, horizontal, up to its peak") {
+  EnvParams params;
+  params.action = "velocity";  // zero: hold still, so the episodes last
+  params.start_speed = params.start_rate = 0.0;
+  params.gust_speed = 3.0;
+  One env(params);
+  int gusty = 0;
+  for (std::uint64_t seed = 0; seed < 6; ++seed) {
+    env.Reset(seed);
+    double strongest = 0.0;
+    EnvStep step;
+    while (!step.terminated && !step.truncated) {
+      step = env.Step({0.0, 0.0, 0.0, 0.0});
+      const Vec3 wind = env.world().vehicle_world().air().wind();
+      CHECK(wind.z() == 0.0);
+      strongest = std::max(strongest, wind.norm());
+    }
+    CHECK(strongest <= 3.0 + 1e-12);
+    CHECK(step.truncated);
+    gusty += strongest > 0.1;
+  }
+  CHECK(gusty >= 4);  // the episodes met their gusts
+}
+
 // A user's task, registered from outside src/: hold a point that rises at 0.1 m/s, with the
 // height error as one extra observation component.
 class Climb : public EnvTask {
