@@ -74,11 +74,11 @@ TEST_CASE("track: the reference's velocity and acceleration are its derivatives"
       const Vec3 v = (task.Reference(t + h) - task.Reference(t - h)) / (2 * h);
       const Vec3 a =
           (task.Reference(t + h) - 2 * task.Reference(t) + task.Reference(t - h)) / (h * h);
-      float now[6];
-      State s = env.world().state();
-      task.Observe(t, s, now);
-      float extra[33];
-      task.Observe(t, s, extra);
+      // the task's components: the reference's velocity and acceleration now, then 3 samples
+      std::vector<float> extra(static_cast<size_t>(6 + 9 * env.params.track_points));
+      const State s = env.world().state();
+      task.Observe(t, s, extra.data());
+      const float* now = extra.data();
       for (int i = 0; i < 3; ++i) {
         CHECK(now[i] == doctest::Approx(v[i]).epsilon(1e-4));
         CHECK(now[3 + i] == doctest::Approx(a[i]).epsilon(1e-3).scale(1.0));
