@@ -15,6 +15,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -55,9 +56,19 @@ class Archive {
   void Enum(const Field& field, E* value, const std::vector<std::pair<E, std::string>>& names);
 };
 
-// A plug-in's own parameters (any struct with Describe), carried by value without src/ knowing
-// the type: a registry entry holds the defaults, a scenario's table sets its keys through the
-// schema, and the plug-in's factory reads them back with Get<P>().
+namespace schema_detail {
+template <typename P, typename = void>
+constexpr bool kHasDescribe = false;
+template <typename P>
+constexpr bool
+    kHasDescribe<P, std::void_t<decltype(std::declval<P&>().Describe(std::declval<Archive&>()))>> =
+        true;
+}  // namespace schema_detail
+
+// A plug-in's own parameters (any copyable struct; its Describe, when it has one, gives its
+// keys), carried by value without the seam knowing the type: a registry entry holds the
+// defaults, a scenario's table sets its keys through the schema, and the plug-in's factory reads
+// them back with Get<P>() or GetOr<P>().
 class PluginParameters {
  public:
   PluginParameters() = default;
@@ -80,6 +91,11 @@ class PluginParameters {
   // The parameters as their own type; throws std::logic_error when they are another type.
   template <typename P>
   const P& Get() const;
+  // The same, or a default-made P when empty.
+  template <typename P>
+  P GetOr() const {
+    return empty() ? P() : Get<P>();
+  }
 
  private:
   struct Base {
@@ -90,7 +106,9 @@ class PluginParameters {
   template <typename P>
   struct Holder : Base {
     explicit Holder(P v) : value(std::move(v)) {}
-    void Describe(Archive& a) override { value.Describe(a); }
+    void Describe(Archive& a) override {
+      if constexpr (schema_detail::kHasDescribe<P>) value.Describe(a);
+    }
     std::unique_ptr<Base> Clone() const override { return std::make_unique<Holder>(value); }
     P value;
   };

@@ -164,10 +164,15 @@ std::string PlannerKindFor(const FlightSetup& setup) {
 PlannerConfig PlannerConfigFor(const FlightSetup& setup) {
   PlannerConfig config;
   config.kind = PlannerKindFor(setup);
-  config.rrt = setup.planning.rrt;
-  config.lattice = LatticeParamsFor(setup);
-  config.waypoints = setup.planning.waypoints;
-  config.params = setup.planning.planner_params;
+  if (config.kind == "rrt_star") {
+    config.params = PluginParameters::Of(setup.planning.rrt);
+  } else if (config.kind == "lattice") {
+    config.params = PluginParameters::Of(LatticeParamsFor(setup));
+  } else if (config.kind == "waypoints") {
+    config.params = PluginParameters::Of(WaypointsParams{setup.planning.waypoints});
+  } else {
+    config.params = setup.planning.planner_params;  // a registered planner's own
+  }
   return config;
 }
 
@@ -221,10 +226,10 @@ void PlanLeg(const FlightSetup& setup, const CollisionWorld& world, const Vec3& 
   // neither finds one
   if (outcome->result.status == PlanStatus::kNoPathWithinBudget && config.kind == "rrt_star" &&
       settings.lattice_fallback) {
-    config.kind = "lattice";
-    config.lattice = FallbackLattice(world.free_bounds());
+    const LatticeParams lattice = FallbackLattice(world.free_bounds());
+    config = {"lattice", PluginParameters::Of(lattice)};
     PlanResult fallback = MakePlanner(config, context)->Plan(from, to);
-    outcome->fallback_spacing = config.lattice.spacing;
+    outcome->fallback_spacing = lattice.spacing;
     outcome->lattice =
         LatticeStats{fallback.stats.nodes, fallback.stats.edges, fallback.stats.build_time};
     fallback.stats.planning_time += outcome->result.stats.planning_time;

@@ -11,6 +11,7 @@
 #include "common/number_format.h"
 #include "common/seed.h"
 #include "planning/path_simplify.h"
+#include "planning/rrt_star.h"
 
 namespace aerobox {
 namespace {
@@ -259,12 +260,16 @@ std::optional<Reference> Replanner::Replan(double t, double tr, int goals_reache
         [&world](const Vec3& a, const Vec3& b) { return world.IsSegmentFree(a, b); }};
     // the flight's planner, through its seam; RRT* to [replan]'s counts
     PlannerConfig config = planner_;
-    config.rrt.time_budget = replan_.time_budget;
-    config.rrt.max_iterations = replan_.iterations;
-    config.rrt.max_search_iterations = replan_.search_iterations;
-    config.rrt.record_tree = false;
     const std::uint64_t seed = seed_ + 7919ULL * (events_.size() + 1) + salt;
-    config.rrt.seed = seed;
+    if (config.kind == "rrt_star") {
+      RrtStarParams rrt = config.params.GetOr<RrtStarParams>();
+      rrt.time_budget = replan_.time_budget;
+      rrt.max_iterations = replan_.iterations;
+      rrt.max_search_iterations = replan_.search_iterations;
+      rrt.record_tree = false;
+      rrt.seed = seed;
+      config.params = PluginParameters::Of(rrt);
+    }
     const PlanResult leg =
         MakePlanner(config, PlannerContext{world.free_bounds(), validity, seed})->Plan(from, to);
     event.time_capped |= leg.stats.time_capped;

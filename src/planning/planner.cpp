@@ -3,7 +3,9 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "planning/lattice_planner.h"
 #include "planning/path_simplify.h"
+#include "planning/rrt_star.h"
 
 namespace aerobox {
 
@@ -68,8 +70,8 @@ class LatticeSeam : public Planner {
 // A path given point by point: checked, not searched.
 class WaypointsPlanner : public Planner {
  public:
-  WaypointsPlanner(std::vector<Vec3> waypoints, const PlannerContext& context)
-      : waypoints_(std::move(waypoints)), context_(context) {}
+  WaypointsPlanner(const WaypointsParams& params, const PlannerContext& context)
+      : waypoints_(params.points), context_(context) {}
   PlanResult Plan(const Vec3& start, const Vec3& goal) override {
     const auto begin = std::chrono::steady_clock::now();
     std::vector<Vec3> path = {start};
@@ -123,13 +125,13 @@ Registry<PlannerFactory>& Planners() {
   static Registry<PlannerFactory> registry = [] {
     Registry<PlannerFactory> r;
     r.Register("rrt_star", [](const PlannerConfig& config, const PlannerContext& context) {
-      return std::make_unique<RrtStarPlanner>(config.rrt, context);
+      return std::make_unique<RrtStarPlanner>(config.params.GetOr<RrtStarParams>(), context);
     });
     r.Register("lattice", [](const PlannerConfig& config, const PlannerContext& context) {
-      return std::make_unique<LatticeSeam>(config.lattice, context);
+      return std::make_unique<LatticeSeam>(config.params.GetOr<LatticeParams>(), context);
     });
     r.Register("waypoints", [](const PlannerConfig& config, const PlannerContext& context) {
-      return std::make_unique<WaypointsPlanner>(config.waypoints, context);
+      return std::make_unique<WaypointsPlanner>(config.params.GetOr<WaypointsParams>(), context);
     });
     return r;
   }();

@@ -11,9 +11,7 @@
 #include <vector>
 
 #include "common/registry.h"
-#include "planning/lattice_planner.h"  // LatticeParams, for PlannerConfig
 #include "planning/plan_result.h"
-#include "planning/rrt_star.h"  // RrtStarParams, for PlannerConfig
 #include "planning/validity.h"
 
 namespace aerobox {
@@ -33,16 +31,18 @@ struct PlannerContext {
   std::uint64_t seed = 1;
 };
 
-// What a scenario's [planner] table sets, for every built-in (each reads its own part).
+// Which planner, with its own parameters: an RrtStarParams for "rrt_star"
+// (planning/rrt_star.h), a LatticeParams for "lattice" (planning/lattice_planner.h), a
+// WaypointsParams for "waypoints", a registered planner's own type (set by its [planner] keys).
+// Empty params: the defaults the kind registered, else its type's defaults.
 struct PlannerConfig {
   std::string kind = "rrt_star";  // a name in Planners()
-  RrtStarParams rrt;
-  LatticeParams lattice;
-  // kind "waypoints": the path goes start, these, goal [m], each leg checked
-  std::vector<Vec3> waypoints;
-  // A registered planner's own parameters ([planner] keys beyond the built-ins'), with the
-  // defaults it registered; empty for the built-ins.
   PluginParameters params;
+};
+
+// The "waypoints" planner's parameters.
+struct WaypointsParams {
+  std::vector<Vec3> points;  // [m] the path goes start, these, goal, each leg checked
 };
 
 using PlannerFactory =

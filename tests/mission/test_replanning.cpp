@@ -7,6 +7,7 @@
 #include "mission/mission.h"
 #include "mission/replanning.h"
 #include "planning/planner.h"
+#include "planning/rrt_star.h"
 #include "trajectory/generators.h"
 
 namespace aerobox {
@@ -125,9 +126,13 @@ class CountingPlanner : public Planner {
 }  // namespace
 
 TEST_CASE("replanning goes through the planner seam: a planner registered by a test replans") {
-  Planners().Register("counting", [](const PlannerConfig& config, const PlannerContext& context) {
-    PlannerConfig rrt = config;
-    rrt.kind = "rrt_star";
+  Planners().Register("counting", [](const PlannerConfig&, const PlannerContext& context) {
+    // RRT* within replanning's counts (its own budget is RRT*'s, not this planner's)
+    RrtStarParams counts;
+    counts.max_iterations = ReplanParams().iterations;
+    counts.max_search_iterations = ReplanParams().search_iterations;
+    counts.time_budget = 10.0;
+    const PlannerConfig rrt{"rrt_star", PluginParameters::Of(counts)};
     return std::unique_ptr<Planner>(std::make_unique<CountingPlanner>(MakePlanner(rrt, context)));
   });
   FlightSetup setup = RoomSetup(3);
