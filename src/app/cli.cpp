@@ -642,6 +642,9 @@ class Cli {
       setting.option = option;
       overrides.settings.push_back(std::move(setting));
     };
+    if (BuiltInController()) {
+      flag("--controller", "controller.kind", JsonQuoted(python_modules.controller));
+    }
     if (!objective.empty()) flag("--objective", "trajectory.objective", JsonQuoted(objective));
     if (!max_speed.empty()) flag("--max-speed", "trajectory.max_speed", max_speed);
     if (!max_accel.empty()) flag("--max-accel", "trajectory.max_accel", max_accel);
@@ -663,6 +666,18 @@ class Cli {
     return overrides;
   }
 
+  // --controller names a registered controller (anything with a ':' is a Python class);
+  // throws InputError for a name that is neither.
+  bool BuiltInController() const {
+    const std::string& name = python_modules.controller;
+    if (name.empty() || name.find(':') != std::string::npos) return false;
+    if (Controllers().Find(name) == nullptr) {
+      throw InputError({"command line", 0}, "--controller",
+                       "expected " + Controllers().NameList() + ", or file.py:Class");
+    }
+    return true;
+  }
+
   FlightSetup SetupFromOptions() {
     const SetupOverrides overrides = Overrides();
     FlightSetup setup = LoadFlightSetup(input, overrides);
@@ -676,16 +691,7 @@ class Cli {
       }
     }
     if (fly->parsed()) {
-      // a built-in controller by name; anything with a ':' is a Python class
-      if (!python_modules.controller.empty() &&
-          python_modules.controller.find(':') == std::string::npos) {
-        if (Controllers().Find(python_modules.controller) == nullptr) {
-          throw InputError({"command line", 0}, "--controller",
-                           "expected " + Controllers().NameList() + ", or file.py:Class");
-        }
-        setup.controller.kind = python_modules.controller;
-        python_modules.controller.clear();
-      }
+      if (BuiltInController()) python_modules.controller.clear();  // it was controller.kind
       UsePythonModules(python_modules, &setup);
     }
     return setup;
