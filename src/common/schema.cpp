@@ -101,6 +101,27 @@ void RangeCheck::Choice(const Field& field, std::string* value,
   }
 }
 
+void RangeCheck::Points(const Field& field, Vec3* points, int count, double low, double high) {
+  for (int i = 0; i < count; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      if (!(points[i][k] >= low && points[i][k] <= high)) {
+        throw std::invalid_argument(table_ + "." + field.name + "[" + std::to_string(i) + "][" +
+                                    std::to_string(k) +
+                                    "] out of range: " + FormatNumber(points[i][k]));
+      }
+    }
+  }
+}
+
+void RangeCheck::Signs(const Field& field, int* signs, int count) {
+  for (int i = 0; i < count; ++i) {
+    if (signs[i] != 1 && signs[i] != -1) {
+      throw std::invalid_argument(table_ + "." + field.name + "[" + std::to_string(i) +
+                                  "] is not 1 or -1: " + std::to_string(signs[i]));
+    }
+  }
+}
+
 void Reference::Number(const Field& field, double* value, double low, double high) {
   // an infinite default is a cap not set
   rows.push_back({table_ + "." + field.name, field.unit,
@@ -134,6 +155,26 @@ void Reference::Choice(const Field& field, std::string* value,
 
 void Reference::Text(const Field& field, std::string* value) {
   rows.push_back({table_ + "." + field.name, field.unit, Quoted(*value), "text", field.meaning});
+}
+
+void Reference::Points(const Field& field, Vec3* points, int count, double low, double high) {
+  std::string text;
+  for (int i = 0; i < count; ++i) {
+    const Vec3& p = points[i];
+    text += std::string(i == 0 ? "" : ", ") + "[" + FormatNumber(p.x()) + ", " +
+            FormatNumber(p.y()) + ", " + FormatNumber(p.z()) + "]";
+  }
+  rows.push_back({table_ + "." + field.name, field.unit, "[" + text + "]",
+                  std::to_string(count) + " points, each coordinate " + FormatNumber(low) + " to " +
+                      FormatNumber(high),
+                  field.meaning});
+}
+
+void Reference::Signs(const Field& field, int* signs, int count) {
+  std::string text;
+  for (int i = 0; i < count; ++i) text += (i == 0 ? "" : ", ") + std::to_string(signs[i]);
+  rows.push_back({table_ + "." + field.name, field.unit, "[" + text + "]",
+                  std::to_string(count) + " signs, 1 or -1", field.meaning});
 }
 
 }  // namespace schema_detail

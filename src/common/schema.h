@@ -47,6 +47,10 @@ class Archive {
                       const std::vector<std::string>& choices) = 0;
   // Any text (a file's path, a name).
   virtual void Text(const Field& field, std::string* value) = 0;
+  // `count` points [x, y, z] (a fixed-size array), each coordinate within [low, high].
+  virtual void Points(const Field& field, Vec3* points, int count, double low, double high) = 0;
+  // `count` signs, each 1 or -1.
+  virtual void Signs(const Field& field, int* signs, int count) = 0;
 
   // An angle kept in radians, given in degrees within [low, high] (the value changes only when
   // the archive sets it, so that a default survives the round trip bit for bit).
@@ -161,6 +165,8 @@ class RangeCheck : public Archive {
   void Choice(const Field& field, std::string* value,
               const std::vector<std::string>& choices) override;
   void Text(const Field&, std::string*) override {}
+  void Points(const Field& field, Vec3* points, int count, double low, double high) override;
+  void Signs(const Field& field, int* signs, int count) override;
 
  private:
   std::string table_;
@@ -177,6 +183,8 @@ class Reference : public Archive {
   void Choice(const Field& field, std::string* value,
               const std::vector<std::string>& choices) override;
   void Text(const Field& field, std::string* value) override;
+  void Points(const Field& field, Vec3* points, int count, double low, double high) override;
+  void Signs(const Field& field, int* signs, int count) override;
   std::vector<KeyRow> rows;
 
  private:

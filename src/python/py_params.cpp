@@ -39,12 +39,7 @@ class KwargsReader : public Archive {
       *value = Vec3::Constant(InRange(f, ToNumber(f, v), low, high));
       return;
     }
-    py::list items;
-    try {
-      items = py::list(py::reinterpret_borrow<py::object>(v));
-    } catch (const py::error_already_set&) {
-      Fail(f, Repr(v), "expected three numbers");
-    }
+    const py::list items = ListOf(f, v, "expected three numbers");
     if (items.size() != 3) Fail(f, Repr(v), "expected three numbers");
     for (int i = 0; i < 3; ++i) (*value)[i] = InRange(f, ToNumber(f, items[i]), low, high);
   }
@@ -73,6 +68,31 @@ class KwargsReader : public Archive {
     }
   }
 
+  void Points(const Field& f, Vec3* points, int count, double low, double high) override {
+    const py::handle v = Take(f);
+    if (!v) return;
+    const std::string expected = "expected " + std::to_string(count) + " points [x, y, z]";
+    const py::list rows = ListOf(f, v, expected);
+    if (static_cast<int>(rows.size()) != count) Fail(f, Repr(v), expected);
+    for (int i = 0; i < count; ++i) {
+      const py::list xyz = ListOf(f, rows[static_cast<size_t>(i)], expected);
+      if (xyz.size() != 3) Fail(f, Repr(v), expected);
+      for (int k = 0; k < 3; ++k) points[i][k] = InRange(f, ToNumber(f, xyz[k]), low, high);
+    }
+  }
+  void Signs(const Field& f, int* signs, int count) override {
+    const py::handle v = Take(f);
+    if (!v) return;
+    const std::string expected = "expected " + std::to_string(count) + " signs, each 1 or -1";
+    const py::list items = ListOf(f, v, expected);
+    if (static_cast<int>(items.size()) != count) Fail(f, Repr(v), expected);
+    for (int i = 0; i < count; ++i) {
+      const double x = ToNumber(f, items[static_cast<size_t>(i)]);
+      if (x != 1.0 && x != -1.0) Fail(f, Repr(v), expected);
+      signs[i] = static_cast<int>(x);
+    }
+  }
+
   // Every argument not taken: a TypeError naming the nearest field.
   void RefuseTheRest() const {
     for (const auto item : kwargs_) {
@@ -91,6 +111,14 @@ class KwargsReader : public Archive {
     if (!kwargs_.contains(f.name)) return py::handle();
     taken_.insert(f.name);
     return kwargs_[f.name];
+  }
+  py::list ListOf(const Field& f, py::handle v, const std::string& expected) const {
+    if (py::isinstance<py::str>(v)) Fail(f, Repr(v), expected);
+    try {
+      return py::list(py::reinterpret_borrow<py::object>(v));
+    } catch (const py::error_already_set&) {
+      Fail(f, Repr(v), expected);
+    }
   }
   double ToNumber(const Field& f, py::handle v) const {
     if (py::isinstance<py::bool_>(v) ||

@@ -13,8 +13,8 @@
 #include "common/schema.h"
 #include "control/controllers.h"
 #include "map/map_reader.h"
-#include "planning/planner.h"
 #include "map/read_file.h"
+#include "planning/planner.h"
 #include "scenario/toml_fields.h"
 #include "scene/scene_mjcf.h"
 #include "vehicle/quad_params.h"
@@ -106,7 +106,6 @@ void ReadTrajectory(const toml::table& table, const std::string& file, PlanningS
   }
 }
 
-// The names for an "unknown key" message.
 // [vehicle]: the kind first (whatever the table's order), then overrides of its values, then
 // one check of the whole; a vehicle that is not physical is reported at the table.
 void ReadVehicle(const toml::table& table, const std::string& file, int table_line,
@@ -122,13 +121,9 @@ void ReadVehicle(const toml::table& table, const std::string& file, int table_li
     scenario->vehicle = *builtin;
   }
   QuadParams& v = scenario->vehicle;
-  // the numbers through QuadParams' Describe; the rotors' arrays and RotorPy's names by hand
+  // QuadParams' fields through its Describe; RotorPy's names for them by hand
   ReadFields(table, file, "vehicle.", &v,
-             {{"kind"},
-              {"rotor_positions", "rotor_directions", "rotor_speed_max", "rotor_speed_min",
-               "moment_coefficient"},
-              {},
-              ""});
+             {{"kind"}, {"rotor_speed_max", "rotor_speed_min", "moment_coefficient"}, {}, ""});
   std::optional<double> speed_min, speed_max, moment_coefficient;
   int speed_line = 0;
   const bool thrust_given =
@@ -137,29 +132,7 @@ void ReadVehicle(const toml::table& table, const std::string& file, int table_li
     const std::string name(key.str());
     const std::string field = "vehicle." + name;
     const int line = LineOf(node);
-    if (name == "rotor_positions") {
-      const toml::array* rows = node.as_array();
-      if (rows == nullptr || rows->size() != kNumRotors) {
-        throw InputError({file, line}, field, "expected 4 points [[x, y, z], ...] in metres");
-      }
-      for (size_t i = 0; i < kNumRotors; ++i) {
-        v.rotor_positions_B[i] =
-            Vector((*rows)[i], file, field + "[" + std::to_string(i) + "]", -10, 10);
-      }
-    } else if (name == "rotor_directions") {
-      const toml::array* signs = node.as_array();
-      if (signs == nullptr || signs->size() != kNumRotors) {
-        throw InputError({file, line}, field, "expected 4 signs, e.g. [1, -1, 1, -1]");
-      }
-      for (size_t i = 0; i < kNumRotors; ++i) {
-        const std::optional<int64_t> sign = (*signs)[i].value<int64_t>();
-        if (!sign || (*sign != 1 && *sign != -1)) {
-          throw InputError({file, line}, field + "[" + std::to_string(i) + "]",
-                           "expected 1 or -1 (the sign of the rotor's yaw moment on the body)");
-        }
-        v.rotor_directions[i] = static_cast<int>(*sign);
-      }
-    } else if (name == "rotor_speed_max" || name == "rotor_speed_min") {
+    if (name == "rotor_speed_max" || name == "rotor_speed_min") {
       (name == "rotor_speed_max" ? speed_max : speed_min) = Number(node, file, field, 0, 1e5);
       speed_line = line;
     } else if (name == "moment_coefficient") {
@@ -502,11 +475,7 @@ std::string ScenarioKeyReference() {
   vehicle.insert(vehicle.begin(), {"vehicle.kind", "", "\"tello\"", "\"tello\" or \"crazyflie\"",
                                    "the built-in vehicle whose values the other keys change"});
   vehicle.insert(vehicle.end(),
-                 {{"vehicle.rotor_positions", "m", "the Tello's", "4 points [[x, y, z], ...]",
-                   "rotor centres, body frame: front-left, front-right, back-right, back-left"},
-                  {"vehicle.rotor_directions", "", "[1, -1, 1, -1]", "4 signs, 1 or -1",
-                   "each rotor's yaw-moment sign (RotorPy's rotor_directions)"},
-                  {"vehicle.rotor_speed_max", "rad/s", "", "0 to 1e+05",
+                 {{"vehicle.rotor_speed_max", "rad/s", "", "0 to 1e+05",
                    "RotorPy's limit as a speed, through thrust_coefficient (not with the thrusts)"},
                   {"vehicle.rotor_speed_min", "rad/s", "", "0 to 1e+05", "... the least"},
                   {"vehicle.moment_coefficient", "N m/(rad/s)^2", "", "1e-18 to 1",

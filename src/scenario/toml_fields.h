@@ -87,6 +87,39 @@ class TomlFields : public Archive {
       *value = toml_read::Text(*node, file_, prefix_ + field.name);
     }
   }
+  void Points(const Field& field, Vec3* points, int count, double low, double high) override {
+    const toml::node* node = Find(field);
+    if (node == nullptr) return;
+    const toml::array* rows = node->as_array();
+    if (rows == nullptr || static_cast<int>(rows->size()) != count) {
+      throw InputError({file_, LineOf(*node)}, prefix_ + field.name,
+                       "expected " + std::to_string(count) + " points [[x, y, z], ...]" +
+                           (*field.unit != '\0' ? std::string(" in ") + field.unit : ""));
+    }
+    for (int i = 0; i < count; ++i) {
+      points[i] =
+          toml_read::Vector((*rows)[static_cast<size_t>(i)], file_,
+                            prefix_ + field.name + "[" + std::to_string(i) + "]", low, high);
+    }
+  }
+  void Signs(const Field& field, int* signs, int count) override {
+    const toml::node* node = Find(field);
+    if (node == nullptr) return;
+    const toml::array* items = node->as_array();
+    const std::string key = prefix_ + field.name;
+    if (items == nullptr || static_cast<int>(items->size()) != count) {
+      throw InputError({file_, LineOf(*node)}, key,
+                       "expected " + std::to_string(count) + " signs, e.g. [1, -1, 1, -1]");
+    }
+    for (int i = 0; i < count; ++i) {
+      const std::optional<int64_t> sign = (*items)[static_cast<size_t>(i)].value<int64_t>();
+      if (!sign || (*sign != 1 && *sign != -1)) {
+        throw InputError({file_, LineOf(*node)}, key + "[" + std::to_string(i) + "]",
+                         std::string("expected 1 or -1 (") + field.meaning + ")");
+      }
+      signs[i] = static_cast<int>(*sign);
+    }
+  }
 
  private:
   const toml::node* Find(const Field& field) const {

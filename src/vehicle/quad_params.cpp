@@ -70,6 +70,11 @@ void QuadParams::Describe(Archive& a) {
            &body_drag, 0, 10);
   a.Vector({"rotor_drag", "s/m", "rotor drag per newton of thrust and m/s, per body axis"},
            &rotor_drag, 0, 10);
+  a.Points({"rotor_positions", "m",
+            "rotor centres, body frame: front-left, front-right, back-right, back-left"},
+           rotor_positions_B.data(), kNumRotors, -10, 10);
+  a.Signs({"rotor_directions", "", "the sign of the rotor's yaw moment on the body"},
+          rotor_directions.data(), kNumRotors);
 }
 
 void QuadParams::Validate() const {

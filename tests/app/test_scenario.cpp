@@ -218,6 +218,15 @@ TEST_CASE("[vehicle] reaches the MuJoCo scene") {
     CHECK(m->actuator_dynprm[a * mjNDYN] == doctest::Approx(0.03));
     CHECK(m->actuator_ctrlrange[2 * a + 1] == doctest::Approx(0.5));
   }
+  // the rotors' arrays
+  const FlightSetup wide = RoomScenario(
+      dir,
+      "[vehicle]\nrotor_positions = [[0.1, 0.1, 0], [0.1, -0.1, 0], [-0.1, -0.1, 0], [-0.1, 0.1, "
+      "0]]\nrotor_directions = [-1, 1, -1, 1]\n");
+  CHECK(wide.vehicle.rotor_positions_B[1].y() == doctest::Approx(-0.1));
+  CHECK(wide.vehicle.rotor_directions[0] == -1);
+  const Simulation wide_sim = Simulation::FromXml(SceneMjcfFor(wide), "room");
+  CHECK(wide_sim.model()->nu == 4);
   // the Crazyflie's own numbers, by kind
   const FlightSetup cf = RoomScenario(dir, "[vehicle]\nkind = \"crazyflie\"\n");
   const Simulation cf_sim = Simulation::FromXml(SceneMjcfFor(cf), "room");
@@ -275,6 +284,13 @@ TEST_CASE("[vehicle], [controller] and [flight]: errors name the line and the ke
             .find("moment_coefficient); did you mean mass?") != std::string::npos);
   CHECK(ScenarioError("map = \"m.txt\"\n[vehicle]\ninertia = [1e-5, 1e-5, 20]\n") ==
         "scenes/x/scenario.toml:3: vehicle.inertia[2]: expected a number from 1e-09 to 10");
+  CHECK(
+      ScenarioError("map = \"m.txt\"\n[vehicle]\nrotor_positions = [[0.1, 0.1, 0]]\n") ==
+      "scenes/x/scenario.toml:3: vehicle.rotor_positions: expected 4 points [[x, y, z], ...] in m");
+  CHECK(
+      ScenarioError("map = \"m.txt\"\n[vehicle]\nrotor_positions = [[0.1, 0.1, 0], [0.1, "
+                    "-0.1, 0], [-0.1, -0.1, 0], [-0.1, 0.1, 11]]\n") ==
+      "scenes/x/scenario.toml:3: vehicle.rotor_positions[3][2]: expected a number from -10 to 10");
   CHECK(ScenarioError("map = \"m.txt\"\n[vehicle]\nrotor_directions = [1, 1, -1, 2]\n") ==
         "scenes/x/scenario.toml:3: vehicle.rotor_directions[3]: expected 1 or -1 (the sign of the "
         "rotor's yaw moment on the body)");

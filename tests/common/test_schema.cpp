@@ -2,6 +2,7 @@
 // range check, the key reference and the readers all come from it.
 #include <doctest/doctest.h>
 
+#include <array>
 #include <stdexcept>
 
 #include "common/schema.h"
@@ -16,8 +17,10 @@ struct Example {
   int attempts = 5;
   bool loud = false;
   Mode mode = Mode::kSlow;
-  double angle = 0.5;  // [rad], given in degrees
-  Vec3 wind = Vec3(1, 0, 0.5);  // [m/s]
+  double angle = 0.5;                                            // [rad], given in degrees
+  Vec3 wind = Vec3(1, 0, 0.5);                                   // [m/s]
+  std::array<Vec3, 2> corners = {Vec3(0, 0, 0), Vec3(1, 2, 3)};  // [m]
+  std::array<int, 2> turns = {1, -1};
 
   void Describe(Archive& a) {
     a.Number({"speed", "m/s", "how fast"}, &speed, 0.1, 8);
@@ -27,6 +30,8 @@ struct Example {
     a.Enum({"mode", "", "which way"}, &mode, {{Mode::kSlow, "slow"}, {Mode::kFast, "fast"}});
     a.Degrees({"angle", "deg", "how far it turns"}, &angle, 1, 90);
     a.Vector({"wind", "m/s", "which way it blows"}, &wind, -5, 5);
+    a.Points({"corners", "m", "where it turns"}, corners.data(), 2, -4, 4);
+    a.Signs({"turns", "", "which way it turns"}, turns.data(), 2);
   }
 };
 
@@ -48,8 +53,19 @@ TEST_CASE("the range check and the key reference come from Describe") {
   CHECK_THROWS_WITH_AS(ValidateFields(e, "example"), "example.wind[2] out of range: 6",
                        std::invalid_argument);
 
+  e.wind.z() = 0.5;
+  e.corners[1].y() = -4.5;
+  CHECK_THROWS_WITH_AS(ValidateFields(e, "example"), "example.corners[1][1] out of range: -4.5",
+                       std::invalid_argument);
+  e.corners[1].y() = 2;
+  e.turns[0] = 0;
+  CHECK_THROWS_WITH_AS(ValidateFields(e, "example"), "example.turns[0] is not 1 or -1: 0",
+                       std::invalid_argument);
+  e.turns[0] = 1;
+  CHECK_NOTHROW(ValidateFields(e, "example"));
+
   const std::vector<KeyRow> rows = KeyRows<Example>("example");
-  REQUIRE(rows.size() == 7);
+  REQUIRE(rows.size() == 9);
   CHECK(rows[0].key == "example.speed");
   CHECK(rows[0].unit == "m/s");
   CHECK(rows[0].value == "2");
@@ -60,6 +76,10 @@ TEST_CASE("the range check and the key reference come from Describe") {
   CHECK(rows[5].unit == "deg");
   CHECK(rows[6].value == "[1, 0, 0.5]");
   CHECK(rows[6].range == "each -5 to 5");
+  CHECK(rows[7].value == "[[0, 0, 0], [1, 2, 3]]");
+  CHECK(rows[7].range == "2 points, each coordinate -4 to 4");
+  CHECK(rows[8].value == "[1, -1]");
+  CHECK(rows[8].range == "2 signs, 1 or -1");
 }
 
 TEST_CASE("a default in degrees survives the round trip bit for bit") {
