@@ -1,7 +1,7 @@
-// telemetry.csv's columns, once: the fixed ones (columns and units in README.md), the
-// controller's own (Controller::ReportColumns), then the extras a flight has. The CSV, the
-// outputs written after a Python run and the benchmarks all take their columns and rows from a
-// TelemetrySchema, so that they cannot disagree.
+// The telemetry's columns, once (TelemetryQuantities): the fixed ones (docs/outputs.md), the
+// controller's own (Controller::ReportColumns), then the extras a flight has. telemetry.csv, the
+// Python result of run(), the outputs written after a Python run, report.html and the
+// benchmarks all take their columns and rows from here, so that they cannot disagree.
 #pragma once
 
 #include <string>
@@ -23,6 +23,26 @@ struct TelemetryExtras {
   bool replans = false;  // replans: unknown boxes, replanned around in flight
 };
 TelemetryExtras TelemetryExtrasFor(const FlightSetup& setup);
+
+// Which flights have a quantity in telemetry.csv: every flight, or one with the extra.
+enum class TelemetryPart { kEvery, kGoals, kReplans, kAir, kSensors };
+
+// One quantity of the telemetry, once: its columns in telemetry.csv and its array in the
+// Python result of run() (Simulator.run's doc), and how a sample gives its numbers.
+struct TelemetryQuantity {
+  TelemetryPart part;
+  std::vector<const char*> columns;  // telemetry.csv's, in order; none: only in the result
+  const char* group;                 // run()'s sub-dict ("state", "flat"; "": the top level)
+  const char* key;                   // its key there; nullptr: only in telemetry.csv
+  int width;                         // numbers per sample (0: one, a 1-D array in the result)
+  // A quaternion: given w first (telemetry.csv's order); the result has RotorPy's x, y, z, w.
+  bool quaternion;
+  void (*fill)(const TelemetrySample& sample, double* out);
+};
+// Every quantity, in telemetry.csv's order within each part; the controller's own columns
+// (Controller::ReportColumns) come after the kEvery part. A quantity in the result is there for
+// every flight, but kSensors' only when every sample has the estimate.
+const std::vector<TelemetryQuantity>& TelemetryQuantities();
 
 class TelemetrySchema {
  public:
@@ -47,8 +67,9 @@ class TelemetrySchema {
 
  private:
   std::vector<std::string> controller_columns_;
-  TelemetryExtras extras_;
+  std::vector<TelemetryPart> parts_;  // the extras', in the table's order
   std::vector<std::string> columns_;
+  int clearance_ = 0;  // the clearance column's index
 };
 
 }  // namespace aerobox

@@ -196,80 +196,27 @@ py::dict TelemetryColumns(const FlightRecord& record) {
   return table;
 }
 
-// One array of run()'s result per row: where it goes (a sub-dict, or the top level for ""),
-// its key, its width (0: one number a sample) and what it takes from a sample.
-struct ResultColumn {
-  const char* group;
-  const char* key;
-  int width;
-  void (*fill)(const TelemetrySample&, double*);
-};
-
-void Put(const Vec3& v, double* out) { std::copy(v.data(), v.data() + 3, out); }
-void Put(const Vec4& v, double* out) { std::copy(v.data(), v.data() + 4, out); }
-void Put(const Quat& q, double* out) {  // RotorPy's [i, j, k, w]
-  const double ijkw[4] = {q.x(), q.y(), q.z(), q.w()};
-  std::copy(ijkw, ijkw + 4, out);
-}
-
-using Sample = TelemetrySample;
-const ResultColumn kFlightColumns[] = {
-    {"", "time", 0, [](const Sample& r, double* o) { *o = r.t; }},
-    {"state", "x", 3, [](const Sample& r, double* o) { Put(r.state.p_W, o); }},
-    {"state", "v", 3, [](const Sample& r, double* o) { Put(r.state.v_W, o); }},
-    {"state", "q", 4, [](const Sample& r, double* o) { Put(r.state.q_WB, o); }},
-    {"state", "w", 3, [](const Sample& r, double* o) { Put(r.state.w_B, o); }},
-    {"control", "cmd_motor_thrusts", 4,
-     [](const Sample& r, double* o) { Put(r.inner.mixer.thrusts, o); }},
-    {"control", "cmd_thrust", 0, [](const Sample& r, double* o) { *o = r.inner.thrust; }},
-    {"control", "cmd_moment", 3, [](const Sample& r, double* o) { Put(r.inner.moment_B, o); }},
-    {"flat", "x", 3, [](const Sample& r, double* o) { Put(r.setpoint.p_W, o); }},
-    {"flat", "x_dot", 3, [](const Sample& r, double* o) { Put(r.setpoint.v_W, o); }},
-    {"flat", "x_ddot", 3, [](const Sample& r, double* o) { Put(r.setpoint.a_W, o); }},
-    {"flat", "x_dddot", 3, [](const Sample& r, double* o) { Put(r.setpoint.j_W, o); }},
-    {"flat", "x_ddddot", 3, [](const Sample& r, double* o) { Put(r.setpoint.s_W, o); }},
-    {"flat", "yaw", 0, [](const Sample& r, double* o) { *o = r.setpoint.yaw; }},
-    {"flat", "yaw_dot", 0, [](const Sample& r, double* o) { *o = r.setpoint.yaw_rate; }},
-    {"", "rotor_thrusts", 4, [](const Sample& r, double* o) { Put(r.rotor_thrusts, o); }},
-    {"", "position_error", 0, [](const Sample& r, double* o) { *o = r.position_error; }},
-    {"", "clearance", 0, [](const Sample& r, double* o) { *o = r.clearance; }},
-    {"", "wind", 3, [](const Sample& r, double* o) { Put(r.wind_W, o); }},
-    {"", "drag", 3, [](const Sample& r, double* o) { Put(r.aero_force_W, o); }},
-};
-// with sensors on, when every sample carries the estimate
-const ResultColumn kEstimateColumns[] = {
-    {"estimate", "x", 3, [](const Sample& r, double* o) { Put(r.estimate->estimate.p_W, o); }},
-    {"estimate", "v", 3, [](const Sample& r, double* o) { Put(r.estimate->estimate.v_W, o); }},
-    {"estimate", "q", 4, [](const Sample& r, double* o) { Put(r.estimate->estimate.q_WB, o); }},
-    {"estimate", "w", 3, [](const Sample& r, double* o) { Put(r.estimate->estimate.w_B, o); }},
-    {"imu", "gyro", 3, [](const Sample& r, double* o) { Put(r.estimate->imu.gyro_B, o); }},
-    {"imu", "accel", 3, [](const Sample& r, double* o) { Put(r.estimate->imu.accel_B, o); }},
-    {"", "estimate_error", 0,
-     [](const Sample& r, double* o) { *o = r.estimate->error.head<3>().norm(); }},
-    {"", "nees", 0, [](const Sample& r, double* o) { *o = r.estimate->nees; }},
-};
-
-// The columns' arrays, one row a sample, into `result` (and its sub-dicts).
-template <size_t N>
-void AddColumns(const std::vector<TelemetrySample>& samples, const ResultColumn (&columns)[N],
-                py::dict* result) {
+// Each quantity of the telemetry schema that run()'s result has (TelemetryQuantities), one
+// array each, one row a sample, into `result` (and its sub-dicts); kSensors' when `sensed`.
+void AddQuantities(const std::vector<TelemetrySample>& samples, bool sensed, py::dict* result) {
   const py::ssize_t n = static_cast<py::ssize_t>(samples.size());
-  for (const ResultColumn& column : columns) {
-    py::array_t<double> array = column.width == 0
-                                    ? py::array_t<double>(n)
-                                    : py::array_t<double>({n, py::ssize_t{column.width}});
+  for (const TelemetryQuantity& q : TelemetryQuantities()) {
+    if (q.key == nullptr || (q.part == TelemetryPart::kSensors && !sensed)) continue;
+    py::array_t<double> array =
+        q.width == 0 ? py::array_t<double>(n) : py::array_t<double>({n, py::ssize_t{q.width}});
     double* out = array.mutable_data();
-    const int stride = std::max(1, column.width);
+    const int stride = std::max(1, q.width);
     for (const TelemetrySample& sample : samples) {
-      column.fill(sample, out);
+      q.fill(sample, out);
+      if (q.quaternion) std::rotate(out, out + 1, out + 4);  // RotorPy's [i, j, k, w]
       out += stride;
     }
-    if (*column.group == '\0') {
-      (*result)[column.key] = array;
+    if (*q.group == '\0') {
+      (*result)[q.key] = array;
       continue;
     }
-    if (!result->contains(column.group)) (*result)[column.group] = py::dict();
-    (*result)[column.group].cast<py::dict>()[column.key] = array;
+    if (!result->contains(q.group)) (*result)[q.group] = py::dict();
+    (*result)[q.group].cast<py::dict>()[q.key] = array;
   }
 }
 
@@ -277,8 +224,11 @@ void AddColumns(const std::vector<TelemetrySample>& samples, const ResultColumn 
 py::dict Result(const FlightRecord& record, const std::string& status) {
   const std::vector<TelemetrySample>& s = record.samples;
   const FlightResult& f = record.flight;
+  const bool sensed = !s.empty() && std::all_of(s.begin(), s.end(), [](const TelemetrySample& r) {
+    return r.estimate.has_value();
+  });
   py::dict result;
-  AddColumns(s, kFlightColumns, &result);
+  AddQuantities(s, sensed, &result);
   result["status"] = status;
   result["reached_goal"] = f.status == FlightStatus::kReachedGoal;
   result["collisions"] = f.status == FlightStatus::kCollision ? 1 : 0;
@@ -295,11 +245,7 @@ py::dict Result(const FlightRecord& record, const std::string& status) {
   result["wall_time"] = record.wall_time;
   result["seed"] = static_cast<long long>(record.setup->seed);
   result["max_wind"] = f.max_wind;
-  const bool sensed = !s.empty() && std::all_of(s.begin(), s.end(), [](const Sample& r) {
-    return r.estimate.has_value();
-  });
   if (sensed) {
-    AddColumns(s, kEstimateColumns, &result);
     result["estimate_rms"] = f.estimate_rms_error;
     result["estimate_max"] = f.estimate_max_error;
   }

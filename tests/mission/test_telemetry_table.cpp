@@ -2,6 +2,10 @@
 // fit them is refused with the controller's columns named, not written misaligned.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
 #include <stdexcept>
 
 #include "control/controllers.h"
@@ -35,6 +39,42 @@ TEST_CASE("the telemetry schema takes the flying controller's own columns") {
   const TelemetrySchema bare;
   CsvTable other = bare.Table();
   CHECK_THROWS_AS(bare.AddRow(sample, &other), std::logic_error);
+}
+
+TEST_CASE("each telemetry quantity is written once, for the CSV and for run()'s result alike") {
+  std::set<std::string> columns, keys;
+  for (const TelemetryQuantity& q : TelemetryQuantities()) {
+    CAPTURE(q.key == nullptr ? q.columns.front() : q.key);
+    // as many columns as numbers, or none (in the result only); in one place or the other
+    CHECK((q.columns.empty() || static_cast<int>(q.columns.size()) == std::max(1, q.width)));
+    CHECK((!q.columns.empty() || q.key != nullptr));
+    CHECK((!q.quaternion || q.width == 4));
+    for (const char* column : q.columns) CHECK(columns.insert(column).second);
+    if (q.key != nullptr) CHECK(keys.insert(std::string(q.group) + "." + q.key).second);
+  }
+  // the sample's numbers land in their own columns, in the table's order
+  TelemetrySample sample;
+  sample.t = 1.5;
+  sample.state.q_WB = Quat(0.5, 0.5, -0.5, 0.5);
+  sample.clearance = std::numeric_limits<double>::infinity();
+  sample.wind_W = Vec3(1, 2, 3);
+  EstimateSample e;
+  e.nees = 7;
+  e.pose = PoseMeasurement();
+  e.pose->p_W = Vec3(4, 5, 6);
+  sample.estimate = e;
+  const TelemetrySchema all({}, TelemetryExtras{true, true, true, true});
+  const Eigen::VectorXd row = all.Row(sample);
+  CHECK(row[all.Index("t")] == 1.5);
+  CHECK(row[all.Index("qy")] == -0.5);
+  CHECK(std::isinf(row[all.Index("clearance")]));
+  CHECK(row[all.Index("wind_z")] == 3);
+  CHECK(row[all.Index("est_nees")] == 7);
+  CHECK(row[all.Index("meas_y")] == 5);
+  CHECK(all.columns().back() == "meas_z");
+  CsvTable table = all.Table();
+  all.AddRow(sample, &table);  // a clearance with nothing in range is -1 in the CSV
+  CHECK(table.rows() == 1);
 }
 
 }  // namespace aerobox
