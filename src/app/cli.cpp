@@ -125,38 +125,45 @@ std::string DescribeUnknownBoxes(const FlightSetup& setup) {
   return out.str();
 }
 
-int RunCheck(const FlightSetup& setup, std::ostream& out) {
+std::ostream& Row(std::ostream& out, const char* label) {
+  return out << std::left << std::setw(10) << label;
+}
+
+// check's rows on the map and where the flight starts and ends.
+void CheckPlaces(const FlightSetup& setup, std::ostream& out) {
   const Map& map = setup.map;
-  const auto row = [&out](const char* label) -> std::ostream& {
-    return out << std::left << std::setw(10) << label;
-  };
-  row("map") << map.source << " (" << FormatName(setup.map_format) << ")\n";
-  row("name") << setup.name << "\n";
-  row("bounds") << Describe(map.bounds) << " m (" << FormatVector(map.bounds.Size(), " x ")
-                << " m)\n";
-  row("boxes") << map.boxes.size() << "\n";
+  Row(out, "map") << map.source << " (" << FormatName(setup.map_format) << ")\n";
+  Row(out, "name") << setup.name << "\n";
+  Row(out, "bounds") << Describe(map.bounds) << " m (" << FormatVector(map.bounds.Size(), " x ")
+                     << " m)\n";
+  Row(out, "boxes") << map.boxes.size() << "\n";
   if (setup.start_origin == kNoStart) {
-    row("start") << "none: no start given and no free spot on the floor or a block\n";
+    Row(out, "start") << "none: no start given and no free spot on the floor or a block\n";
   } else {
-    row("start") << FormatVector(setup.start, ", ") << " (" << setup.start_origin << ")\n";
+    Row(out, "start") << FormatVector(setup.start, ", ") << " (" << setup.start_origin << ")\n";
   }
   if (setup.goal) {
-    row("goal") << FormatVector(*setup.goal, ", ") << " (" << setup.goal_origin << ")\n";
+    Row(out, "goal") << FormatVector(*setup.goal, ", ") << " (" << setup.goal_origin << ")\n";
   } else {
-    row("goal") << "none given\n";
+    Row(out, "goal") << "none given\n";
   }
-  // the settings in force, after the scenario's tables
-  const QuadParams& v = setup.vehicle;
-  row("vehicle")
-      << setup.vehicle_kind << ": " << FormatNumber(v.mass) << " kg, inertia "
-      << FormatVector(v.inertia) << " kg m^2, rotors " << FormatNumber(v.MinRotorThrust()) << " .. "
+}
+
+std::string DescribeVehicle(const std::string& kind, const QuadParams& v) {
+  std::ostringstream out;
+  out << kind << ": " << FormatNumber(v.mass) << " kg, inertia " << FormatVector(v.inertia)
+      << " kg m^2, rotors " << FormatNumber(v.MinRotorThrust()) << " .. "
       << FormatNumber(v.MaxRotorThrust()) << " N (thrust/weight "
       << FormatNumber(std::round(100 * kNumRotors * v.MaxRotorThrust() / (v.mass * kGravity)) / 100)
       << "), yaw " << FormatNumber(v.yaw_moment_per_thrust) << " N m/N, motor lag "
       << FormatNumber(v.motor_time_constant) << " s, box " << FormatVector(v.collision_size, " x ")
-      << " m\n";
-  const ControllerConfig& c = setup.controller;
-  row("control") << c.kind << " at " << FormatNumber(c.rate) << " Hz: ";
+      << " m";
+  return out.str();
+}
+
+std::string DescribeControl(const ControllerConfig& c) {
+  std::ostringstream out;
+  out << c.kind << " at " << FormatNumber(c.rate) << " Hz: ";
   if (c.kind == "cascade") {
     out << "position " << FormatVector(c.cascade.position_gain) << " 1/s, velocity "
         << FormatVector(c.cascade.velocity_gain) << " 1/s (I "
@@ -169,57 +176,60 @@ int RunCheck(const FlightSetup& setup, std::ostream& out) {
         << " 1/s; ";
   }
   out << "inner loops: attitude " << FormatVector(c.inner.attitude.gain) << " 1/s, rates "
-      << FormatVector(c.inner.rate.gain) << " 1/s\n";
-  const FlightParams& f = setup.flight;
-  row("flight") << "goal within " << FormatNumber(f.goal_tolerance) << " m below "
-                << FormatNumber(f.goal_speed) << " m/s, " << FormatNumber(f.settle_time)
-                << " s after the trajectory; fly-away at " << FormatNumber(f.flyaway_distance)
-                << " m; yaw " << (f.face_travel ? "along the travel" : "held") << "\n";
+      << FormatVector(c.inner.rate.gain) << " 1/s";
+  return out.str();
+}
+
+std::string DescribeAir(const FlightSetup& setup) {
   const WindParams& w = setup.wind;
-  row("air");
-  if (!w.Enabled() && !setup.aero.Enabled()) {
-    out << "still, no drag\n";
-  } else {
-    out << "wind " << FormatVector(w.mean) << " m/s";
-    if (w.turbulence == Turbulence::kDryden) {
-      out << ", Dryden turbulence " << FormatVector(w.intensity) << " m/s";
-    }
-    if (!w.gusts.empty()) out << ", " << w.gusts.size() << " gust(s)";
-    out << "; drag: body " << (setup.aero.body_drag ? "on" : "off") << ", rotor "
-        << (setup.aero.rotor_drag ? "on" : "off")
-        << (c.drag_feedforward ? ", fed forward by the controller" : "") << "\n";
+  if (!w.Enabled() && !setup.aero.Enabled()) return "still, no drag";
+  std::ostringstream out;
+  out << "wind " << FormatVector(w.mean) << " m/s";
+  if (w.turbulence == Turbulence::kDryden) {
+    out << ", Dryden turbulence " << FormatVector(w.intensity) << " m/s";
   }
-  const SensorParams& sensors = setup.sensors;
-  row("sensors");
-  if (!sensors.Enabled()) {
-    out << "none: the controller reads the true state\n";
-  } else {
-    const PositionSensorParams& pos = sensors.position;
-    out << "IMU at " << FormatNumber(sensors.imu.rate) << " Hz, "
-        << (pos.kind == PositionSensorKind::kGps ? "GPS" : "motion capture") << " at "
-        << FormatNumber(pos.rate) << " Hz (noise " << FormatVector(pos.noise) << " m, latency "
-        << FormatNumber(pos.latency) << " s); the controller flies on the estimator's state\n";
-  }
+  if (!w.gusts.empty()) out << ", " << w.gusts.size() << " gust(s)";
+  out << "; drag: body " << (setup.aero.body_drag ? "on" : "off") << ", rotor "
+      << (setup.aero.rotor_drag ? "on" : "off")
+      << (setup.controller.drag_feedforward ? ", fed forward by the controller" : "");
+  return out.str();
+}
+
+std::string DescribeSensors(const SensorParams& sensors) {
+  if (!sensors.Enabled()) return "none: the controller reads the true state";
+  const PositionSensorParams& pos = sensors.position;
+  std::ostringstream out;
+  out << "IMU at " << FormatNumber(sensors.imu.rate) << " Hz, "
+      << (pos.kind == PositionSensorKind::kGps ? "GPS" : "motion capture") << " at "
+      << FormatNumber(pos.rate) << " Hz (noise " << FormatVector(pos.noise) << " m, latency "
+      << FormatNumber(pos.latency) << " s); the controller flies on the estimator's state";
+  return out.str();
+}
+
+std::string DescribePlanning(const FlightSetup& setup) {
   const PlanningSettings& p = setup.planning;
   // a cap that is not set (min-time: the vehicle's limits decide) reads "no ... cap", not "inf"
   const auto cap = [](double value, const char* unit, const char* what) {
     return std::isfinite(value) ? FormatNumber(value) + " " + unit
                                 : std::string("no ") + what + " cap";
   };
-  row("planner") << PlannerKindFor(setup) << ", clearance " << FormatNumber(p.clearance)
-                 << " m; trajectory " << p.trajectory_method << ", "
-                 << cap(p.trajectory.max_speed, "m/s", "speed") << ", "
-                 << cap(p.trajectory.max_accel, "m/s^2", "acceleration") << ", clearance "
-                 << FormatNumber(p.trajectory_clearance) << " m\n";
-  row("unknown") << DescribeUnknownBoxes(setup) << "\n";
+  return PlannerKindFor(setup) + ", clearance " + FormatNumber(p.clearance) + " m; trajectory " +
+         p.trajectory_method + ", " + cap(p.trajectory.max_speed, "m/s", "speed") + ", " +
+         cap(p.trajectory.max_accel, "m/s^2", "acceleration") + ", clearance " +
+         FormatNumber(p.trajectory_clearance) + " m";
+}
+
+// check's rows on the boxes outside the bounds, and on the start and goal as planning takes
+// them; throws InputError for an endpoint that cannot be flown from or to.
+void CheckEndpoints(const FlightSetup& setup, std::ostream& out) {
+  const Map& map = setup.map;
   const std::vector<size_t> outside = BoxesOutsideBounds(map);
-  row("outside") << outside.size() << (outside.size() == 1 ? " box reaches" : " boxes reach")
-                 << " outside the bounds (kept)\n";
+  Row(out, "outside") << outside.size() << (outside.size() == 1 ? " box reaches" : " boxes reach")
+                      << " outside the bounds (kept)\n";
   for (const size_t i : outside) {
     out << "            " << map.boxes[i].name << " (line " << map.boxes[i].line
         << "): " << Describe(map.boxes[i].extent) << "\n";
   }
-
   if (setup.start_origin != kNoStart) {
     CheckEndpoint(setup, setup.start, "start", setup.start_origin);
   }
@@ -231,11 +241,27 @@ int RunCheck(const FlightSetup& setup, std::ostream& out) {
                                                 setup.start_where, setup.goal_where);
     out << DescribeMoves(start, goal);
   }
+}
 
-  const Simulation sim = Simulation::FromXml(SceneMjcfFor(setup), map.source + " (scene)");
-  row("scene") << "loads in MuJoCo " << mj_versionString() << " (" << sim.model()->ngeom
-               << " geoms, " << sim.model()->nbody << " bodies)\n";
-  row("result") << "ok\n";
+int RunCheck(const FlightSetup& setup, std::ostream& out) {
+  CheckPlaces(setup, out);
+  // the settings in force, after the scenario's tables
+  const FlightParams& f = setup.flight;
+  Row(out, "vehicle") << DescribeVehicle(setup.vehicle_kind, setup.vehicle) << "\n";
+  Row(out, "control") << DescribeControl(setup.controller) << "\n";
+  Row(out, "flight") << "goal within " << FormatNumber(f.goal_tolerance) << " m below "
+                     << FormatNumber(f.goal_speed) << " m/s, " << FormatNumber(f.settle_time)
+                     << " s after the trajectory; fly-away at " << FormatNumber(f.flyaway_distance)
+                     << " m; yaw " << (f.face_travel ? "along the travel" : "held") << "\n";
+  Row(out, "air") << DescribeAir(setup) << "\n";
+  Row(out, "sensors") << DescribeSensors(setup.sensors) << "\n";
+  Row(out, "planner") << DescribePlanning(setup) << "\n";
+  Row(out, "unknown") << DescribeUnknownBoxes(setup) << "\n";
+  CheckEndpoints(setup, out);
+  const Simulation sim = Simulation::FromXml(SceneMjcfFor(setup), setup.map.source + " (scene)");
+  Row(out, "scene") << "loads in MuJoCo " << mj_versionString() << " (" << sim.model()->ngeom
+                    << " geoms, " << sim.model()->nbody << " bodies)\n";
+  Row(out, "result") << "ok\n";
   return kExitReachedGoal;
 }
 
