@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "common/schema.h"
 #include "geometry/collision_world.h"
 #include "planning/lattice_planner.h"
 #include "planning/rrt_star.h"
@@ -55,6 +56,13 @@ struct PlanningSettings {
   // What the trajectory keeps from obstacles [m]: half the planner's, so that the corridors
   // around the planner's path have room to bend in.
   double trajectory_clearance = 0.05;
+
+  // [planner]'s keys but kind and waypoints (read by the registry's names and as a list of
+  // points), RRT*'s among them (common/schema.h). lattice_spacing sets both of the lattice's
+  // spacings: the caller copies it to vertical_spacing.
+  void DescribePlanner(Archive& a);
+  // [trajectory]'s keys but method and file, the generator's among them.
+  void DescribeTrajectory(Archive& a);
 };
 
 }  // namespace aerobox

@@ -8,6 +8,22 @@
 
 namespace aerobox {
 
+void PlanningSettings::DescribePlanner(Archive& a) {
+  a.Number({"clearance", "m", "kept from obstacles and the bounds, beyond the vehicle's own box"},
+           &clearance, 0, 10);
+  rrt.Describe(a);
+  a.Number({"lattice_spacing", "m", "the lattice's spacing, across and up"}, &lattice.spacing, 0.5,
+           100);
+  a.Boolean({"lattice_fallback", "", "a fine lattice searches the map when RRT* finds no path"},
+            &lattice_fallback);
+}
+
+void PlanningSettings::DescribeTrajectory(Archive& a) {
+  trajectory.Describe(a);
+  a.Number({"clearance", "m", "kept from obstacles by the trajectory"}, &trajectory_clearance, 0,
+           10);
+}
+
 CollisionParams FlightSetup::PlannerCollision() const {
   return CollisionParams{vehicle.collision_size, planning.clearance};
 }

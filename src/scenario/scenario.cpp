@@ -24,6 +24,17 @@ namespace fs = std::filesystem;
 using namespace toml_read;  // the readers of TOML values and tables (toml_fields.h)
 namespace {
 
+// [planner]'s and [trajectory]'s keys as a struct with a Describe, for ReadFields and the key
+// reference.
+struct PlannerKeys {
+  PlanningSettings* settings;
+  void Describe(Archive& a) { settings->DescribePlanner(a); }
+};
+struct TrajectoryKeys {
+  PlanningSettings* settings;
+  void Describe(Archive& a) { settings->DescribeTrajectory(a); }
+};
+
 void ReadPlanner(const toml::table& table, const std::string& file, PlanningSettings* settings) {
   // the kind first, whatever the table's order: a registered planner brings its own keys
   if (const toml::node* kind = table.get("kind")) {
@@ -35,48 +46,40 @@ void ReadPlanner(const toml::table& table, const std::string& file, PlanningSett
     settings->planner = *value;
     settings->planner_params = Planners().Parameters(*value);
   }
-  // RRT*'s keys through its Describe; these by hand; then the plug-in's own
-  ReadFields(table, file, "planner.", &settings->rrt,
-             {{"kind", "clearance"},
-              {"lattice_spacing", "lattice_fallback", "waypoints"},
+  // the table's keys through PlanningSettings' Describe; the waypoints by hand; then the
+  // plug-in's own
+  PlannerKeys keys{settings};
+  ReadFields(table, file, "planner.", &keys,
+             {{"kind"},
+              {"waypoints"},
               FieldNames(settings->planner_params),
               "planner kind \"" + settings->planner + "\""});
-  for (const auto& [key, node] : table) {
-    const std::string name(key.str());
-    const std::string field = "planner." + name;
-    if (name == "clearance") {
-      settings->clearance = Number(node, file, field, 0.0, 10.0);
-    } else if (name == "waypoints") {
-      const toml::array* points = node.as_array();
-      if (points == nullptr) {
-        throw InputError({file, LineOf(node)}, field,
-                         "expected an array of points [[x, y, z], ...]");
-      }
-      settings->waypoints.clear();
-      for (size_t i = 0; i < points->size(); ++i) {
-        settings->waypoints.push_back(
-            ReadPoint((*points)[i], file, (field + "[" + std::to_string(i) + "]").c_str()));
-      }
-    } else if (name == "lattice_fallback") {
-      settings->lattice_fallback = Boolean(node, file, field);
-    } else if (name == "lattice_spacing") {
-      settings->lattice.spacing = Number(node, file, field, 0.5, 100.0);
-      settings->lattice.vertical_spacing = settings->lattice.spacing;
+  if (table.get("lattice_spacing") != nullptr) {
+    settings->lattice.vertical_spacing = settings->lattice.spacing;
+  }
+  if (const toml::node* node = table.get("waypoints")) {
+    const toml::array* points = node->as_array();
+    if (points == nullptr) {
+      throw InputError({file, LineOf(*node)}, "planner.waypoints",
+                       "expected an array of points [[x, y, z], ...]");
+    }
+    settings->waypoints.clear();
+    for (size_t i = 0; i < points->size(); ++i) {
+      const std::string field = "planner.waypoints[" + std::to_string(i) + "]";
+      settings->waypoints.push_back(ReadPoint((*points)[i], file, field.c_str()));
     }
   }
   ReadPluginKeys(table, file, "planner.", &settings->planner_params);
 }
 
 void ReadTrajectory(const toml::table& table, const std::string& file, PlanningSettings* settings) {
-  // the trajectory's keys through its Describe; these by hand
-  ReadFields(table, file, "trajectory.", &settings->trajectory,
-             {{}, {"clearance", "method", "file"}, {}, ""});
+  // the table's keys through PlanningSettings' Describe; these by hand
+  TrajectoryKeys keys{settings};
+  ReadFields(table, file, "trajectory.", &keys, {{}, {"method", "file"}, {}, ""});
   for (const auto& [key, node] : table) {
     const std::string name(key.str());
     const std::string field = "trajectory." + name;
-    if (name == "clearance") {
-      settings->trajectory_clearance = Number(node, file, field, 0.0, 10.0);
-    } else if (name == "method") {
+    if (name == "method") {
       const std::optional<std::string> text = node.value<std::string>();
       if (!text || TrajectoryGenerators().Find(*text) == nullptr) {
         throw InputError({file, LineOf(node)}, field,
@@ -441,36 +444,40 @@ Scenario ScenarioWithSettings(const std::string& text, const std::string& file,
 
 }  // namespace
 
-std::string ScenarioKeyReference() {
-  struct Table {
-    std::string name;
-    std::string what;
-    std::vector<KeyRow> rows;
-  };
+namespace {
+
+// One table of the key reference.
+struct KeyTable {
+  std::string name;
+  std::string what;
+  std::vector<KeyRow> rows;
+};
+
+// [planner]'s and [trajectory]'s rows: PlanningSettings', and those read by hand.
+std::vector<KeyTable> PlanningKeyTables() {
   PlanningSettings planning;  // the defaults a scenario starts from
-  std::vector<KeyRow> planner = KeyRowsOf(planning.rrt, "planner");
-  planner.insert(
-      planner.begin(),
-      {{"planner.kind", "", "\"" + planning.planner + "\"", "auto, " + Planners().NameList(),
-        "auto: the lattice for a map wider than 200 m, RRT* otherwise"},
-       {"planner.clearance", "m", FormatNumber(planning.clearance), "0 to 10",
-        "kept from obstacles and the bounds, beyond the vehicle's own box"}});
-  planner.insert(planner.end(),
-                 {{"planner.lattice_spacing", "m", FormatNumber(planning.lattice.spacing),
-                   "0.5 to 100", "the lattice's spacing, across and up"},
-                  {"planner.lattice_fallback", "", planning.lattice_fallback ? "true" : "false",
-                   "true or false", "a fine lattice searches the map when RRT* finds no path"},
-                  {"planner.waypoints", "m", "[]", "points [[x, y, z], ...]",
-                   "kind \"waypoints\": the path goes start, these, goal"}});
-  std::vector<KeyRow> trajectory = KeyRowsOf(planning.trajectory, "trajectory");
+  PlannerKeys planner_keys{&planning};
+  std::vector<KeyRow> planner = KeyRowsOf(planner_keys, "planner");
+  planner.insert(planner.begin(), {"planner.kind", "", "\"" + planning.planner + "\"",
+                                   "auto, " + Planners().NameList(),
+                                   "auto: the lattice for a map wider than 200 m, RRT* otherwise"});
+  planner.push_back({"planner.waypoints", "m", "[]", "points [[x, y, z], ...]",
+                     "kind \"waypoints\": the path goes start, these, goal"});
+  TrajectoryKeys trajectory_keys{&planning};
+  std::vector<KeyRow> trajectory = KeyRowsOf(trajectory_keys, "trajectory");
   trajectory.insert(
       trajectory.end(),
-      {{"trajectory.clearance", "m", FormatNumber(planning.trajectory_clearance), "0 to 10",
-        "kept from obstacles by the trajectory"},
-       {"trajectory.method", "", "\"" + planning.trajectory_method + "\"",
+      {{"trajectory.method", "", "\"" + planning.trajectory_method + "\"",
         TrajectoryGenerators().NameList(), "the generator: min-snap (ours), a baseline, or given"},
        {"trajectory.file", "", "", "a file name",
         "method \"given\": a trajectory.csv to fly, relative to the scenario"}});
+  return {
+      {"planner", "the path: RRT*, the lattice, given waypoints, or a registered planner", planner},
+      {"trajectory", "the trajectory along the path", trajectory}};
+}
+
+// [vehicle]'s rows: QuadParams', the kind, and RotorPy's names for its values.
+std::vector<KeyRow> VehicleKeyRows() {
   std::vector<KeyRow> vehicle = KeyRows<QuadParams>("vehicle");
   vehicle.insert(vehicle.begin(), {"vehicle.kind", "", "\"tello\"", "\"tello\" or \"crazyflie\"",
                                    "the built-in vehicle whose values the other keys change"});
@@ -480,6 +487,11 @@ std::string ScenarioKeyReference() {
                   {"vehicle.rotor_speed_min", "rad/s", "", "0 to 1e+05", "... the least"},
                   {"vehicle.moment_coefficient", "N m/(rad/s)^2", "", "1e-18 to 1",
                    "RotorPy's k_m: sets yaw_moment_per_thrust = k_m / thrust_coefficient"}});
+  return vehicle;
+}
+
+// Every built-in table's rows, in the page's order.
+std::vector<KeyTable> BuiltInKeyTables() {
   const ControllerConfig control;  // the defaults a scenario starts from
   std::vector<KeyRow> controller = KeyRows<ControllerConfig>("controller");
   controller.insert(controller.begin(),
@@ -488,10 +500,9 @@ std::string ScenarioKeyReference() {
   std::vector<KeyRow> aero = KeyRows<AeroParams>("aero");
   aero.insert(aero.begin(), {"aero.drag", "", "false", "true or false",
                              "body_drag and rotor_drag at once (read first)"});
-  const std::vector<Table> tables = {
-      {"planner", "the path: RRT*, the lattice, given waypoints, or a registered planner", planner},
-      {"trajectory", "the trajectory along the path", trajectory},
-      {"vehicle", "the vehicle: a built-in kind, and any of its values changed", vehicle},
+  std::vector<KeyTable> tables = PlanningKeyTables();
+  const std::vector<KeyTable> others = {
+      {"vehicle", "the vehicle: a built-in kind, and any of its values changed", VehicleKeyRows()},
       {"controller", "the controller and the loops below it; a registered one's own keys below",
        controller},
       {"flight", "when a flight has reached its goal, or is lost; the yaw",
@@ -511,8 +522,13 @@ std::string ScenarioKeyReference() {
        KeyRows<SensingParams>("sensing")},
       {"replan", "replanning around boxes revealed in flight", KeyRows<ReplanParams>("replan")},
   };
-  // registered plug-ins' own keys, each under the kind that brings them
-  std::vector<Table> plugins;
+  tables.insert(tables.end(), others.begin(), others.end());
+  return tables;
+}
+
+// Registered plug-ins' own keys, each under the kind that brings them.
+std::vector<KeyTable> PluginKeyTables() {
+  std::vector<KeyTable> plugins;
   const auto add_plugins = [&plugins](const std::string& table, const auto& registry) {
     for (const std::string& name : registry.Names()) {
       PluginParameters params = registry.Parameters(name);
@@ -524,6 +540,12 @@ std::string ScenarioKeyReference() {
   };
   add_plugins("controller", Controllers());
   add_plugins("planner", Planners());
+  return plugins;
+}
+
+}  // namespace
+
+std::string ScenarioKeyReference() {
   std::ostringstream out;
   out << "# Scenario keys\n\n"
       << "Generated by `aerobox keys` from the parameter structs' own descriptions (a test fails "
@@ -532,9 +554,10 @@ std::string ScenarioKeyReference() {
          "outside its range is refused naming the file, line and key, and a misspelt key is "
          "refused naming the key it looks like.\n\n"
       << "[render] defines no keys yet.\n";
-  std::vector<Table> all = tables;
+  std::vector<KeyTable> all = BuiltInKeyTables();
+  const std::vector<KeyTable> plugins = PluginKeyTables();
   all.insert(all.end(), plugins.begin(), plugins.end());
-  for (const Table& table : all) {
+  for (const KeyTable& table : all) {
     out << "\n## [" << table.name << (table.name.find('=') == std::string::npos ? "]" : "\"")
         << "\n\n"
         << table.what << ".\n\n"

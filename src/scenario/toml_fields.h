@@ -148,7 +148,7 @@ template <typename Params>
 void ReadFields(const toml::table& table, const std::string& file, const std::string& prefix,
                 Params* params, const OtherKeys& other = {}) {
   std::vector<std::string> names = other.before;
-  for (const KeyRow& row : KeyRows<Params>("")) names.push_back(row.key.substr(1));
+  for (const std::string& name : FieldNames(*params)) names.push_back(name);
   names.insert(names.end(), other.after.begin(), other.after.end());
   std::vector<std::string> all = names;
   all.insert(all.end(), other.plugin.begin(), other.plugin.end());
