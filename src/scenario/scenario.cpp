@@ -444,132 +444,6 @@ Scenario ScenarioWithSettings(const std::string& text, const std::string& file,
 
 }  // namespace
 
-namespace {
-
-// One table of the key reference.
-struct KeyTable {
-  std::string name;
-  std::string what;
-  std::vector<KeyRow> rows;
-};
-
-// [planner]'s and [trajectory]'s rows: PlanningSettings', and those read by hand.
-std::vector<KeyTable> PlanningKeyTables() {
-  PlanningSettings planning;  // the defaults a scenario starts from
-  PlannerKeys planner_keys{&planning};
-  std::vector<KeyRow> planner = KeyRowsOf(planner_keys, "planner");
-  planner.insert(planner.begin(), {"planner.kind", "", "\"" + planning.planner + "\"",
-                                   "auto, " + Planners().NameList(),
-                                   "auto: the lattice for a map wider than 200 m, RRT* otherwise"});
-  planner.push_back({"planner.waypoints", "m", "[]", "points [[x, y, z], ...]",
-                     "kind \"waypoints\": the path goes start, these, goal"});
-  TrajectoryKeys trajectory_keys{&planning};
-  std::vector<KeyRow> trajectory = KeyRowsOf(trajectory_keys, "trajectory");
-  trajectory.insert(
-      trajectory.end(),
-      {{"trajectory.method", "", "\"" + planning.trajectory_method + "\"",
-        TrajectoryGenerators().NameList(), "the generator: min-snap (ours), a baseline, or given"},
-       {"trajectory.file", "", "", "a file name",
-        "method \"given\": a trajectory.csv to fly, relative to the scenario"}});
-  return {
-      {"planner", "the path: RRT*, the lattice, given waypoints, or a registered planner", planner},
-      {"trajectory", "the trajectory along the path", trajectory}};
-}
-
-// [vehicle]'s rows: QuadParams', the kind, and RotorPy's names for its values.
-std::vector<KeyRow> VehicleKeyRows() {
-  std::vector<KeyRow> vehicle = KeyRows<QuadParams>("vehicle");
-  vehicle.insert(vehicle.begin(), {"vehicle.kind", "", "\"tello\"", "\"tello\" or \"crazyflie\"",
-                                   "the built-in vehicle whose values the other keys change"});
-  vehicle.insert(vehicle.end(),
-                 {{"vehicle.rotor_speed_max", "rad/s", "", "0 to 1e+05",
-                   "RotorPy's limit as a speed, through thrust_coefficient (not with the thrusts)"},
-                  {"vehicle.rotor_speed_min", "rad/s", "", "0 to 1e+05", "... the least"},
-                  {"vehicle.moment_coefficient", "N m/(rad/s)^2", "", "1e-18 to 1",
-                   "RotorPy's k_m: sets yaw_moment_per_thrust = k_m / thrust_coefficient"}});
-  return vehicle;
-}
-
-// Every built-in table's rows, in the page's order.
-std::vector<KeyTable> BuiltInKeyTables() {
-  const ControllerConfig control;  // the defaults a scenario starts from
-  std::vector<KeyRow> controller = KeyRows<ControllerConfig>("controller");
-  controller.insert(controller.begin(),
-                    {"controller.kind", "", "\"" + control.kind + "\"", Controllers().NameList(),
-                     "the controller: the built-ins (cascade, geometric se3) or a registered one"});
-  std::vector<KeyRow> aero = KeyRows<AeroParams>("aero");
-  aero.insert(aero.begin(), {"aero.drag", "", "false", "true or false",
-                             "body_drag and rotor_drag at once (read first)"});
-  std::vector<KeyTable> tables = PlanningKeyTables();
-  const std::vector<KeyTable> others = {
-      {"vehicle", "the vehicle: a built-in kind, and any of its values changed", VehicleKeyRows()},
-      {"controller", "the controller and the loops below it; a registered one's own keys below",
-       controller},
-      {"flight", "when a flight has reached its goal, or is lost; the yaw",
-       KeyRows<FlightParams>("flight")},
-      {"wind", "the wind: a mean, Dryden turbulence, and gusts ([[wind.gusts]])",
-       KeyRows<WindParams>("wind")},
-      {"[wind.gusts]", "one gust, a table each, in [[wind.gusts]] tables",
-       KeyRows<Gust>("wind.gusts")},
-      {"aero", "drag in the air (the wind is [wind])", aero},
-      {"sensors.imu", "the IMU (sensors.imu = true: these defaults)",
-       KeyRows<ImuParams>("sensors.imu")},
-      {"sensors.position", "the position sensor (sensors.position = true: motion capture)",
-       KeyRows<PositionSensorParams>("sensors.position")},
-      {"sensors.estimator", "the error-state Kalman filter the controller flies on",
-       KeyRows<EstimatorParams>("sensors.estimator")},
-      {"sensing", "the sensor that reveals unknown boxes in flight",
-       KeyRows<SensingParams>("sensing")},
-      {"replan", "replanning around boxes revealed in flight", KeyRows<ReplanParams>("replan")},
-  };
-  tables.insert(tables.end(), others.begin(), others.end());
-  return tables;
-}
-
-// Registered plug-ins' own keys, each under the kind that brings them.
-std::vector<KeyTable> PluginKeyTables() {
-  std::vector<KeyTable> plugins;
-  const auto add_plugins = [&plugins](const std::string& table, const auto& registry) {
-    for (const std::string& name : registry.Names()) {
-      PluginParameters params = registry.Parameters(name);
-      if (params.empty()) continue;
-      plugins.push_back({table + "] kind = \"" + name,
-                         "a registered " + table + "'s own keys, beside the table's others",
-                         KeyRowsOf(params, table)});
-    }
-  };
-  add_plugins("controller", Controllers());
-  add_plugins("planner", Planners());
-  return plugins;
-}
-
-}  // namespace
-
-std::string ScenarioKeyReference() {
-  std::ostringstream out;
-  out << "# Scenario keys\n\n"
-      << "Generated by `aerobox keys` from the parameter structs' own descriptions (a test fails "
-         "when this page is not what the code says). Every key is set in a scenario's table, "
-         "with `--set TABLE.KEY=VALUE` on the command line, or in a sweep's grid; a value "
-         "outside its range is refused naming the file, line and key, and a misspelt key is "
-         "refused naming the key it looks like.\n\n"
-      << "[render] defines no keys yet.\n";
-  std::vector<KeyTable> all = BuiltInKeyTables();
-  const std::vector<KeyTable> plugins = PluginKeyTables();
-  all.insert(all.end(), plugins.begin(), plugins.end());
-  for (const KeyTable& table : all) {
-    out << "\n## [" << table.name << (table.name.find('=') == std::string::npos ? "]" : "\"")
-        << "\n\n"
-        << table.what << ".\n\n"
-        << "| key | unit | default | range | meaning |\n|---|---|---|---|---|\n";
-    for (const KeyRow& row : table.rows) {
-      out << "| `" << row.key.substr(row.key.rfind('.') + 1) << "` | " << row.unit << " | "
-          << row.value << " | " << row.range << " | " << row.meaning << " |\n";
-    }
-  }
-  return out.str();
-}
-
 Setting ParseSetting(const std::string& text, const std::string& option) {
   const size_t equals = text.find('=');
   if (equals == std::string::npos || equals == 0 || equals + 1 == text.size()) {
@@ -635,13 +509,122 @@ const SectionReader* FindSection(const std::string& name) {
   return nullptr;
 }
 
+// A file named relative to the scenario's folder.
+std::string RelativeFile(const toml::node& node, const std::string& file, const std::string& key) {
+  const std::optional<std::string> value = node.value<std::string>();
+  if (!value || value->empty()) throw InputError({file, LineOf(node)}, key, "expected a file name");
+  return (fs::path(file).parent_path() / *value).lexically_normal().string();
+}
+
+void ReadGoals(const toml::node& node, const std::string& file, Scenario* s) {
+  const toml::array* points = node.as_array();
+  if (points == nullptr || points->empty()) {
+    throw InputError({file, LineOf(node)}, "goals",
+                     "expected an array of points [[x, y, z], ...] in metres");
+  }
+  for (size_t i = 0; i < points->size(); ++i) {
+    const Vec3 p = ReadPoint((*points)[i], file, ("goals[" + std::to_string(i) + "]").c_str());
+    if (i + 1 < points->size()) {
+      s->via.push_back(p);
+    } else {
+      s->goal = p;
+    }
+  }
+  s->goal_line = LineOf(node);
+}
+
+void ReadUnknown(const toml::node& node, const std::string& file, Scenario* s) {
+  const toml::array* indices = node.as_array();
+  if (indices == nullptr) {
+    throw InputError({file, LineOf(node)}, "unknown",
+                     "expected an array of box indices (from 0, in map order)");
+  }
+  for (size_t i = 0; i < indices->size(); ++i) {
+    const toml::value<int64_t>* index = (*indices)[i].as_integer();
+    if (index == nullptr || index->get() < 0 || index->get() > 1000000) {
+      throw InputError({file, LineOf((*indices)[i])}, "unknown[" + std::to_string(i) + "]",
+                       "expected a box index (an integer from 0)");
+    }
+    s->unknown.push_back(static_cast<int>(index->get()));
+  }
+  s->unknown_line = LineOf(node);
+}
+
+void ReadSeed(const toml::node& node, const std::string& file, Scenario* s) {
+  // an integer node only: toml++ would convert a float such as 2e30 by an out-of-range cast
+  // (undefined behaviour; the fuzzer found it)
+  const toml::value<int64_t>* value = node.as_integer();
+  if (value == nullptr || value->get() < 0) {
+    throw InputError({file, LineOf(node)}, "seed", "expected a non-negative integer");
+  }
+  s->seed = static_cast<std::uint64_t>(value->get());
+}
+
+// The keys of the top-level table, once: each one's reader and its row in the key reference.
+struct TopLevelKey {
+  const char* name;
+  const char* unit;
+  const char* value;  // the default
+  const char* range;
+  const char* meaning;
+  void (*read)(const toml::node& node, const std::string& file, Scenario* s);
+};
+const TopLevelKey kTopLevel[] = {
+    {"name", "", "the file's stem", "a folder name",
+     "the outputs' folder name (scenario.toml: its folder's name)",
+     [](const toml::node& n, const std::string& f, Scenario* s) {
+       s->name = FolderName(n, f, "name");
+     }},
+    {"map", "", "", "a file name",
+     "the map (required): .txt, .json or .csv, relative to the scenario",
+     [](const toml::node& n, const std::string& f, Scenario* s) {
+       s->map_path = RelativeFile(n, f, "map");
+       s->map_line = LineOf(n);
+     }},
+    {"start", "m", "the map's", "[x, y, z]", "where the flight starts",
+     [](const toml::node& n, const std::string& f, Scenario* s) {
+       s->start = ReadPoint(n, f, "start");
+       s->start_line = LineOf(n);
+     }},
+    {"goal", "m", "the map's", "[x, y, z]", "where the flight ends (or goals)",
+     [](const toml::node& n, const std::string& f, Scenario* s) {
+       s->goal = ReadPoint(n, f, "goal");
+       s->goal_line = LineOf(n);
+     }},
+    {"goals", "m", "", "points [[x, y, z], ...]", "a mission through each in order (or goal)",
+     [](const toml::node& n, const std::string& f, Scenario* s) { ReadGoals(n, f, s); }},
+    {"stop_at_goals", "", "false", "true or false",
+     "stop at each of the goals (for hold) instead of flying through",
+     [](const toml::node& n, const std::string& f, Scenario* s) {
+       s->stop_at_goals = Boolean(n, f, "stop_at_goals");
+     }},
+    {"hold", "s", "0", "0 to 600", "how long a stop at a goal lasts",
+     [](const toml::node& n, const std::string& f, Scenario* s) {
+       s->hold = Number(n, f, "hold", 0, 600);
+     }},
+    {"unknown", "", "[]", "box indices [0, 3, ...]",
+     "boxes the planner does not know (from 0, in map order); [sensing] reveals them",
+     [](const toml::node& n, const std::string& f, Scenario* s) { ReadUnknown(n, f, s); }},
+    {"unknown_fraction", "", "0", "0 to 1", "a seeded share of the map's boxes, unknown",
+     [](const toml::node& n, const std::string& f, Scenario* s) {
+       s->unknown_fraction = Number(n, f, "unknown_fraction", 0, 1);
+       s->unknown_line = LineOf(n);
+     }},
+    {"unknown_map", "", "", "a file name",
+     "another map whose boxes are added to the scene, unknown to the planner",
+     [](const toml::node& n, const std::string& f, Scenario* s) {
+       s->unknown_map = RelativeFile(n, f, "unknown_map");
+       s->unknown_line = LineOf(n);
+     }},
+    {"seed", "", "1", "an integer from 0", "the random seed of planning, wind and sensors",
+     [](const toml::node& n, const std::string& f, Scenario* s) { ReadSeed(n, f, s); }},
+};
+
 // "unknown key (expected name, map, ..., [planner], ...)" and the key it looks like.
 std::string UnknownTopLevelKey(const std::string& name) {
-  std::vector<std::string> keys = {"name",        "map",     "start",
-                                   "goal",        "goals",   "stop_at_goals",
-                                   "hold",        "unknown", "unknown_fraction",
-                                   "unknown_map", "seed"};
-  std::vector<std::string> shown = keys;
+  std::vector<std::string> keys, shown;
+  for (const TopLevelKey& key : kTopLevel) keys.push_back(key.name);
+  shown = keys;
   for (const auto& section : kSections) {
     keys.push_back(section.first);
     shown.push_back("[" + std::string(section.first) + "]");
@@ -649,6 +632,21 @@ std::string UnknownTopLevelKey(const std::string& name) {
   const std::string nearest = NearestName(name, keys);
   return "unknown key (expected " + ListOfNames(shown) + ")" +
          (nearest.empty() ? "" : "; did you mean " + nearest + "?");
+}
+
+// One top-level key or table into `scenario`.
+void ReadTopLevel(const std::string& name, const toml::node& node, const std::string& file,
+                  Scenario* scenario) {
+  for (const TopLevelKey& key : kTopLevel) {
+    if (name == key.name) return key.read(node, file, scenario);
+  }
+  const SectionReader* read = FindSection(name);
+  if (read == nullptr) throw InputError({file, LineOf(node)}, name, UnknownTopLevelKey(name));
+  const toml::table* section = node.as_table();
+  if (section == nullptr) {
+    throw InputError({file, LineOf(node)}, name, "expected a table [" + name + "]");
+  }
+  (*read)(*section, {file, LineOf(node)}, scenario);
 }
 
 Scenario ScenarioFromTable(const toml::table& table, const std::string& file) {
@@ -659,81 +657,10 @@ Scenario ScenarioFromTable(const toml::table& table, const std::string& file) {
   const fs::path absolute = fs::absolute(fs::path(file));
   scenario.name = absolute.stem() == "scenario" ? absolute.parent_path().filename().string()
                                                 : absolute.stem().string();
-  for (const auto& [key, node] : table) {
-    const std::string name(key.str());
-    const SourceLocation where{file, LineOf(node)};
-    if (name == "name") {
-      scenario.name = FolderName(node, file, name);
-    } else if (name == "map") {
-      const std::optional<std::string> value = node.value<std::string>();
-      if (!value || value->empty()) throw InputError(where, name, "expected a file name");
-      scenario.map_path = (fs::path(file).parent_path() / *value).lexically_normal().string();
-      scenario.map_line = LineOf(node);
-    } else if (name == "start") {
-      scenario.start = ReadPoint(node, file, "start");
-      scenario.start_line = LineOf(node);
-    } else if (name == "goal") {
-      if (table.get("goals") != nullptr) {
-        throw InputError(where, name, "give goal or goals, not both");
-      }
-      scenario.goal = ReadPoint(node, file, "goal");
-      scenario.goal_line = LineOf(node);
-    } else if (name == "goals") {
-      const toml::array* points = node.as_array();
-      if (points == nullptr || points->empty()) {
-        throw InputError(where, name, "expected an array of points [[x, y, z], ...] in metres");
-      }
-      for (size_t i = 0; i < points->size(); ++i) {
-        const Vec3 p = ReadPoint((*points)[i], file, ("goals[" + std::to_string(i) + "]").c_str());
-        if (i + 1 < points->size()) {
-          scenario.via.push_back(p);
-        } else {
-          scenario.goal = p;
-        }
-      }
-      scenario.goal_line = LineOf(node);
-    } else if (name == "unknown") {
-      const toml::array* indices = node.as_array();
-      if (indices == nullptr) {
-        throw InputError(where, name, "expected an array of box indices (from 0, in map order)");
-      }
-      for (size_t i = 0; i < indices->size(); ++i) {
-        const toml::value<int64_t>* index = (*indices)[i].as_integer();
-        if (index == nullptr || index->get() < 0 || index->get() > 1000000) {
-          throw InputError({file, LineOf((*indices)[i])}, "unknown[" + std::to_string(i) + "]",
-                           "expected a box index (an integer from 0)");
-        }
-        scenario.unknown.push_back(static_cast<int>(index->get()));
-      }
-      scenario.unknown_line = LineOf(node);
-    } else if (name == "unknown_fraction") {
-      scenario.unknown_fraction = Number(node, file, name, 0, 1);
-      scenario.unknown_line = LineOf(node);
-    } else if (name == "unknown_map") {
-      const std::optional<std::string> value = node.value<std::string>();
-      if (!value || value->empty()) throw InputError(where, name, "expected a file name");
-      scenario.unknown_map = (fs::path(file).parent_path() / *value).lexically_normal().string();
-      scenario.unknown_line = LineOf(node);
-    } else if (name == "stop_at_goals") {
-      scenario.stop_at_goals = Boolean(node, file, name);
-    } else if (name == "hold") {
-      scenario.hold = Number(node, file, name, 0, 600);
-    } else if (name == "seed") {
-      // an integer node only: toml++ would convert a float such as 2e30 by an out-of-range
-      // cast (undefined behaviour; the fuzzer found it)
-      const toml::value<int64_t>* value = node.as_integer();
-      if (value == nullptr || value->get() < 0) {
-        throw InputError(where, name, "expected a non-negative integer");
-      }
-      scenario.seed = static_cast<std::uint64_t>(value->get());
-    } else if (const SectionReader* read = FindSection(name)) {
-      const toml::table* section = node.as_table();
-      if (section == nullptr) throw InputError(where, name, "expected a table [" + name + "]");
-      (*read)(*section, {file, LineOf(node)}, &scenario);
-    } else {
-      throw InputError(where, name, UnknownTopLevelKey(name));
-    }
+  if (table.get("goal") != nullptr && table.get("goals") != nullptr) {
+    throw InputError({file, LineOf(*table.get("goal"))}, "goal", "give goal or goals, not both");
   }
+  for (const auto& [key, node] : table) ReadTopLevel(std::string(key.str()), node, file, &scenario);
   // a missing key belongs to the top-level table, which starts at line 1
   if (scenario.map_path.empty()) throw InputError({file, 1}, "map", "missing key 'map'");
   // a speed cap within the vehicle's own top speed (the schema's range is the fastest
@@ -964,5 +891,146 @@ FlightSetup SetupFrom(const std::string& path, std::optional<Scenario> scenario,
 }
 
 }  // namespace
+
+namespace {
+
+// One table of the key reference.
+struct KeyTable {
+  std::string name;
+  std::string what;
+  std::vector<KeyRow> rows;
+};
+
+// [planner]'s and [trajectory]'s rows: PlanningSettings', and those read by hand.
+std::vector<KeyTable> PlanningKeyTables() {
+  PlanningSettings planning;  // the defaults a scenario starts from
+  PlannerKeys planner_keys{&planning};
+  std::vector<KeyRow> planner = KeyRowsOf(planner_keys, "planner");
+  planner.insert(planner.begin(), {"planner.kind", "", "\"" + planning.planner + "\"",
+                                   "auto, " + Planners().NameList(),
+                                   "auto: the lattice for a map wider than 200 m, RRT* otherwise"});
+  planner.push_back({"planner.waypoints", "m", "[]", "points [[x, y, z], ...]",
+                     "kind \"waypoints\": the path goes start, these, goal"});
+  TrajectoryKeys trajectory_keys{&planning};
+  std::vector<KeyRow> trajectory = KeyRowsOf(trajectory_keys, "trajectory");
+  trajectory.insert(
+      trajectory.end(),
+      {{"trajectory.method", "", "\"" + planning.trajectory_method + "\"",
+        TrajectoryGenerators().NameList(), "the generator: min-snap (ours), a baseline, or given"},
+       {"trajectory.file", "", "", "a file name",
+        "method \"given\": a trajectory.csv to fly, relative to the scenario"}});
+  return {
+      {"planner", "the path: RRT*, the lattice, given waypoints, or a registered planner", planner},
+      {"trajectory", "the trajectory along the path", trajectory}};
+}
+
+// [vehicle]'s rows: QuadParams', the kind, and RotorPy's names for its values.
+std::vector<KeyRow> VehicleKeyRows() {
+  std::vector<KeyRow> vehicle = KeyRows<QuadParams>("vehicle");
+  vehicle.insert(vehicle.begin(), {"vehicle.kind", "", "\"tello\"", "\"tello\" or \"crazyflie\"",
+                                   "the built-in vehicle whose values the other keys change"});
+  vehicle.insert(vehicle.end(),
+                 {{"vehicle.rotor_speed_max", "rad/s", "", "0 to 1e+05",
+                   "RotorPy's limit as a speed, through thrust_coefficient (not with the thrusts)"},
+                  {"vehicle.rotor_speed_min", "rad/s", "", "0 to 1e+05", "... the least"},
+                  {"vehicle.moment_coefficient", "N m/(rad/s)^2", "", "1e-18 to 1",
+                   "RotorPy's k_m: sets yaw_moment_per_thrust = k_m / thrust_coefficient"}});
+  return vehicle;
+}
+
+// The top-level table's keys (kTopLevel).
+KeyTable TopLevelKeyTable() {
+  KeyTable table{"", "the keys outside any table: the map, the flight's ends, the seed", {}};
+  for (const TopLevelKey& key : kTopLevel) {
+    table.rows.push_back({key.name, key.unit, key.value, key.range, key.meaning});
+  }
+  return table;
+}
+
+// Every built-in table's rows, in the page's order.
+std::vector<KeyTable> BuiltInKeyTables() {
+  const ControllerConfig control;  // the defaults a scenario starts from
+  std::vector<KeyRow> controller = KeyRows<ControllerConfig>("controller");
+  controller.insert(controller.begin(),
+                    {"controller.kind", "", "\"" + control.kind + "\"", Controllers().NameList(),
+                     "the controller: the built-ins (cascade, geometric se3) or a registered one"});
+  std::vector<KeyRow> aero = KeyRows<AeroParams>("aero");
+  aero.insert(aero.begin(), {"aero.drag", "", "false", "true or false",
+                             "body_drag and rotor_drag at once (read first)"});
+  std::vector<KeyTable> tables = PlanningKeyTables();
+  const std::vector<KeyTable> others = {
+      {"vehicle", "the vehicle: a built-in kind, and any of its values changed", VehicleKeyRows()},
+      {"controller", "the controller and the loops below it; a registered one's own keys below",
+       controller},
+      {"flight", "when a flight has reached its goal, or is lost; the yaw",
+       KeyRows<FlightParams>("flight")},
+      {"wind", "the wind: a mean, Dryden turbulence, and gusts ([[wind.gusts]])",
+       KeyRows<WindParams>("wind")},
+      {"[wind.gusts]", "one gust, a table each, in [[wind.gusts]] tables",
+       KeyRows<Gust>("wind.gusts")},
+      {"aero", "drag in the air (the wind is [wind])", aero},
+      {"sensors.imu", "the IMU (sensors.imu = true: these defaults)",
+       KeyRows<ImuParams>("sensors.imu")},
+      {"sensors.position", "the position sensor (sensors.position = true: motion capture)",
+       KeyRows<PositionSensorParams>("sensors.position")},
+      {"sensors.estimator", "the error-state Kalman filter the controller flies on",
+       KeyRows<EstimatorParams>("sensors.estimator")},
+      {"sensing", "the sensor that reveals unknown boxes in flight",
+       KeyRows<SensingParams>("sensing")},
+      {"replan", "replanning around boxes revealed in flight", KeyRows<ReplanParams>("replan")},
+  };
+  tables.insert(tables.end(), others.begin(), others.end());
+  return tables;
+}
+
+// Registered plug-ins' own keys, each under the kind that brings them.
+std::vector<KeyTable> PluginKeyTables() {
+  std::vector<KeyTable> plugins;
+  const auto add_plugins = [&plugins](const std::string& table, const auto& registry) {
+    for (const std::string& name : registry.Names()) {
+      PluginParameters params = registry.Parameters(name);
+      if (params.empty()) continue;
+      plugins.push_back({table + "] kind = \"" + name,
+                         "a registered " + table + "'s own keys, beside the table's others",
+                         KeyRowsOf(params, table)});
+    }
+  };
+  add_plugins("controller", Controllers());
+  add_plugins("planner", Planners());
+  return plugins;
+}
+
+}  // namespace
+
+std::string ScenarioKeyReference() {
+  std::ostringstream out;
+  out << "# Scenario keys\n\n"
+      << "Generated by `aerobox keys` from the parameter structs' own descriptions (a test fails "
+         "when this page is not what the code says). Every key is set in a scenario's table, "
+         "with `--set TABLE.KEY=VALUE` on the command line, or in a sweep's grid; a value "
+         "outside its range is refused naming the file, line and key, and a misspelt key is "
+         "refused naming the key it looks like.\n\n"
+      << "[render] defines no keys yet.\n";
+  std::vector<KeyTable> all = {TopLevelKeyTable()};
+  const std::vector<KeyTable> tables = BuiltInKeyTables();
+  all.insert(all.end(), tables.begin(), tables.end());
+  const std::vector<KeyTable> plugins = PluginKeyTables();
+  all.insert(all.end(), plugins.begin(), plugins.end());
+  for (const KeyTable& table : all) {
+    if (table.name.empty()) {
+      out << "\n## The top level\n\n";
+    } else {
+      out << "\n## [" << table.name << (table.name.find('=') == std::string::npos ? "]" : "\"")
+          << "\n\n";
+    }
+    out << table.what << ".\n\n"
+        << "| key | unit | default | range | meaning |\n|---|---|---|---|---|\n";
+    for (const KeyRow& row : table.rows) {
+      out << "| `" << row.key.substr(row.key.rfind('.') + 1) << "` | " << row.unit << " | "
+          << row.value << " | " << row.range << " | " << row.meaning << " |\n";
+    }
+  }
+  return out.str();
+}
 
 }  // namespace aerobox
