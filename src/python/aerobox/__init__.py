@@ -489,11 +489,14 @@ def write_outputs(result, out_dir, video=True, size=(640, 480), fps=30, camera="
                                    int(height), int(fps), camera, bool(report))
 
 
-def builtin_controller(sim, kind="cascade", rate=500):
+def builtin_controller(sim, kind="cascade", rate=None):
     """A built-in controller ("cascade", "se3") as a Python object for `sim`'s vehicle:
     update(t, state, flat_output) -> dict with every command level at once: its own command
     (cmd_thrust [N], cmd_q [i, j, k, w], cmd_w_ff [rad/s]) and what aerobox's inner loops make
     of it below it,
-    called at `rate` [Hz]: cmd_w [rad/s], cmd_moment [N m], cmd_motor_thrusts [N],
+    called at `rate` [Hz] (None: the scenario's controller rate, which run() also calls it at
+    by default): cmd_w [rad/s], cmd_moment [N m], cmd_motor_thrusts [N],
     cmd_motor_speeds [rad/s]. For comparing, or wrapping, in Python."""
+    if rate is None:
+        rate = sim._core.setup.control_rate
     return _aerobox.BuiltinController(sim._core.setup, kind, float(rate))
