@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages aerobox needs to build and test, and nothing when they are all
 # there already. Runs apt-get as root, or through sudo otherwise.
-# Usage: tools/setup.sh [--bench]   (--bench adds OMPL, the reference of `aerobox bench`)
+# Usage: tools/setup.sh [--bench]   (--bench adds OMPL and L2F, references of `aerobox bench`)
 set -euo pipefail
 
 packages=(
@@ -75,10 +75,12 @@ fi
 # CUDA torch above all) comes in. The Python tests that fly RotorPy's own objects run in it.
 top=$(cd "$(dirname "$0")/.." && pwd)
 venv=$top/.venv
+# --bench adds the "bench-peers" extra (L2F, compiled here from its source package)
 pins=$(/usr/bin/python3 -c 'import sys, tomllib
 with open(sys.argv[1], "rb") as file:
-    print(" ".join(tomllib.load(file)["project"]["optional-dependencies"]["peers"]))' \
-  "$top/pyproject.toml")
+    extras = tomllib.load(file)["project"]["optional-dependencies"]
+print(" ".join(extras["peers"] + (extras["bench-peers"] if sys.argv[2] == "--bench" else [])))' \
+  "$top/pyproject.toml" "${1:-}")
 if [ "$(cat "$venv/aerobox-pins" 2> /dev/null)" = "$pins" ]; then
   echo "setup: the project environment .venv has its pinned packages"
   exit 0

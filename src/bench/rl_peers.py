@@ -10,7 +10,11 @@
    environment (gym.make_vec). PyFlyt's agent rate must divide 120 Hz: it runs at 120 Hz (240 Hz
    physics) and aerobox at 100 Hz, so the ratio is of simulated seconds per wall second.
 
-3. Training: examples/train_hover.py (PPO on 32 worlds) until its policy holds within 10 cm for
+3. L2F 2.0 ("Learning to Fly in Seconds", C++ through pybind11; no contacts, no obstacles), the
+   fastest CPU quadrotor simulator we know, against aerobox's vector environment at 100 Hz, when
+   tools/setup.sh --bench has built it (its PyPI package is a source package compiled with
+   -march=native, about 6 minutes on two cores, so the default set-up does not take it).
+4. Training: examples/train_hover.py (PPO on 32 worlds) until its policy holds within 10 cm for
    the last 10 s of 15 s episodes from 10 random starts within 1 m: the steps and the wall time
    (the issue's target: under 15 minutes on two cores; RotorPy's README: a working hover in
    under 4 minutes on a laptop's many cores).
@@ -141,6 +145,55 @@ def pyflyt_table(sizes, repetitions, smoke):
               f"{(b / 100) / (a / PYFLYT_HZ):.1f} |", flush=True)
 
 
+def l2f_rate(n, steps, warm_up=5):
+    """Environment steps per second of L2F's vector environment of n worlds: observe and step,
+    the motors at mid-command, every world started again from a sampled state every 500 steps
+    (5 s episodes)."""
+    import l2f
+
+    vector = getattr(l2f, f"vector{n}")
+    device, rng, env = l2f.Device(), vector.VectorRng(), vector.VectorEnvironment()
+    params, state, after = vector.VectorParameters(), vector.VectorState(), vector.VectorState()
+    vector.initialize_rng(device, rng, 1)
+    vector.initialize_environment(device, env)
+    vector.sample_initial_parameters(device, env, params, rng)
+    observation = np.zeros((n, env.OBSERVATION_DIM), np.float32)
+    action = np.zeros((n, 4), np.float32)
+    begin = None
+    for k in range(warm_up + steps):
+        if k == warm_up:
+            begin = time.perf_counter()
+        if k % 500 == 0:
+            vector.sample_initial_state(device, env, params, state, rng)
+        vector.observe(device, env, params, state, observation, rng)
+        vector.step(device, env, params, state, action, after, rng)
+        state.assign(after)
+    return n * steps / (time.perf_counter() - begin)
+
+
+def l2f_table(sizes, repetitions, smoke):
+    try:
+        import l2f  # noqa: F401
+    except ImportError:
+        print("\nL2F (`l2f` from PyPI) is not in the project environment: tools/setup.sh --bench "
+              "(run by tools/bench.sh) builds it.")
+        return
+    print(f"\nL2F 2.0's vector environment (\"Learning to Fly in Seconds\", C++ through pybind11, "
+          "100 Hz, observe and step, no contacts or obstacles) and aerobox/Hover-v0 (100 Hz, its "
+          f"own vector environment, gym.make_vec), motor commands. Medians of {repetitions}.\n")
+    print("| worlds | L2F: env steps/s | aerobox: env steps/s | aerobox / L2F |")
+    print("|---|---|---|---|")
+    for n in sizes:
+        steps = 5 if smoke else max(200, 400000 // n)
+        theirs, ours = [], []
+        for _ in range(repetitions):
+            theirs.append(l2f_rate(n, steps))
+            ours.append(gym_rate(gym.make_vec("aerobox/Hover-v0", num_envs=n, action="thrusts"),
+                                 np.zeros(4), max(5, steps // 100)))
+        a, b = statistics.median(theirs), statistics.median(ours)
+        print(f"| {n} | {a:.0f} | {b:.0f} | {b / a:.3f} |", flush=True)
+
+
 def training_row(smoke):
     """Runs examples/train_hover.py in this process and prints what it took."""
     sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
@@ -169,6 +222,7 @@ def main(argv):
     sizes, repetitions = ([4], 1) if smoke else ([16, 64, 256], 3)
     rotorpy_table(sizes, repetitions, smoke, threads)
     pyflyt_table([4] if smoke else [1, 16, 64], repetitions, smoke)
+    l2f_table([4] if smoke else [16, 64, 256], repetitions, smoke)
     training_row(smoke)
     return 0
 
