@@ -104,6 +104,25 @@ def pyflyt_envs(n):
                             agent_hz=PYFLYT_HZ)
 
 
+def medians(repetitions, theirs, ours):
+    """The medians of `repetitions` rates of a peer and of aerobox, timed in turn."""
+    a, b = [], []
+    for _ in range(repetitions):
+        a.append(theirs())
+        b.append(ours())
+    return statistics.median(a), statistics.median(b)
+
+
+def pyflyt_rate(n, steps):
+    peer = pyflyt_envs(n)
+    hover = np.zeros(peer.single_action_space.shape)
+    hover[-1] = 0.5  # rates 0, thrust near hover
+    try:
+        return gym_rate(peer, hover, steps)
+    finally:
+        peer.close()
+
+
 def rotorpy_table(sizes, repetitions, smoke, threads):
     print(f"RotorPy 3.0's batched QuadrotorEnv (torch {torch.__version__.split('+')[0]}, "
           f"{threads} threads) and aerobox's vector environment (aerobox/Hover-v0, {threads} "
@@ -113,12 +132,11 @@ def rotorpy_table(sizes, repetitions, smoke, threads):
     print("|---|---|---|---|")
     for n in sizes:
         steps = 5 if smoke else max(20, 6400 // n)
-        theirs, ours = [], []
-        for _ in range(repetitions):
-            peer = make_default_vec_env(n, quad_params, "cmd_ctbr", torch.device("cpu"))
-            theirs.append(rate(peer, n, steps))
-            ours.append(rate(AeroboxVecEnv("aerobox/Hover-v0", n, action="ctbr"), n, steps))
-        a, b = statistics.median(theirs), statistics.median(ours)
+        a, b = medians(
+            repetitions,
+            lambda: rate(make_default_vec_env(n, quad_params, "cmd_ctbr", torch.device("cpu")), n,
+                         steps),
+            lambda: rate(AeroboxVecEnv("aerobox/Hover-v0", n, action="ctbr"), n, steps))
         print(f"| {n} | {a:.0f} | {b:.0f} | {b / a:.1f} |", flush=True)
 
 
@@ -131,16 +149,10 @@ def pyflyt_table(sizes, repetitions, smoke):
     print("|---|---|---|---|---|---|")
     for n in sizes:
         steps = 5 if smoke else max(20, 3200 // n)
-        theirs, ours = [], []
-        for _ in range(repetitions):
-            peer = pyflyt_envs(n)
-            hover = np.zeros(peer.single_action_space.shape)
-            hover[-1] = 0.5  # rates 0, thrust near hover
-            theirs.append(gym_rate(peer, hover, steps))
-            peer.close()
-            ours.append(gym_rate(gym.make_vec("aerobox/Hover-v0", num_envs=n, action="ctbr"),
-                                 np.array([0.1, 0.0, 0.0, 0.0]), steps))
-        a, b = statistics.median(theirs), statistics.median(ours)
+        a, b = medians(
+            repetitions, lambda: pyflyt_rate(n, steps),
+            lambda: gym_rate(gym.make_vec("aerobox/Hover-v0", num_envs=n, action="ctbr"),
+                             np.array([0.1, 0.0, 0.0, 0.0]), steps))
         print(f"| {n} | {a:.0f} | {a / PYFLYT_HZ:.0f} | {b:.0f} | {b / 100:.0f} | "
               f"{(b / 100) / (a / PYFLYT_HZ):.1f} |", flush=True)
 
@@ -185,12 +197,10 @@ def l2f_table(sizes, repetitions, smoke):
     print("|---|---|---|---|")
     for n in sizes:
         steps = 5 if smoke else max(200, 400000 // n)
-        theirs, ours = [], []
-        for _ in range(repetitions):
-            theirs.append(l2f_rate(n, steps))
-            ours.append(gym_rate(gym.make_vec("aerobox/Hover-v0", num_envs=n, action="thrusts"),
-                                 np.zeros(4), max(5, steps // 100)))
-        a, b = statistics.median(theirs), statistics.median(ours)
+        a, b = medians(
+            repetitions, lambda: l2f_rate(n, steps),
+            lambda: gym_rate(gym.make_vec("aerobox/Hover-v0", num_envs=n, action="thrusts"),
+                             np.zeros(4), max(5, steps // 100)))
         print(f"| {n} | {a:.0f} | {b:.0f} | {b / a:.3f} |", flush=True)
 
 
