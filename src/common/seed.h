@@ -16,6 +16,7 @@ enum class SeedStream : std::uint64_t {
   kUnknownBoxes = 5,
   kMotorNoise = 6,
   kEnvironment = 7,  // a learning environment's random starts
+  kDepthCamera = 8,  // the depth camera's noise and dropouts
 };
 
 // A seed for `stream` derived from `seed` (SplitMix64 over both: well mixed, and the same on

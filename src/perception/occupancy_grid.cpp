@@ -1,0 +1,207 @@
+#include "perception/occupancy_grid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+
+namespace aerobox {
+namespace {
+
+// OctoMap's defaults: a hit says occupied with probability 0.7, a miss 0.4; clamped to
+// [0.12, 0.97]; occupied above 0.5. As log-odds:
+constexpr float kHit = 0.8473f;      // log(0.7 / 0.3)
+constexpr float kMiss = -0.4055f;    // log(0.4 / 0.6)
+constexpr float kLowest = -1.9924f;  // log(0.12 / 0.88)
+constexpr float kHighest = 3.4761f;  // log(0.97 / 0.03)
+
+}  // namespace
+
+void OccupancyParams::Describe(Archive& a) {
+  a.Number({"resolution", "m", "the occupancy map's cell side (kind \"depth\")"}, &resolution, 0.02,
+           2);
+  a.Boolean({"columns", "",
+             "unknown cells above and below an occupied one count as occupied until seen free"},
+            &columns);
+}
+
+OccupancyGrid::OccupancyGrid(const Aabb& bounds, const OccupancyParams& params, const char* table)
+    : bounds_(bounds), resolution_(params.resolution) {
+  const Vec3 cells = (bounds.Size() / resolution_).array().ceil().max(1.0);
+  const double total = cells.prod();
+  if (!(resolution_ > 0) || !(total <= static_cast<double>(kMaxCells))) {
+    throw std::invalid_argument(std::string(table) + ".resolution: " + std::to_string(resolution_) +
+                                " m would need " + std::to_string(total) +
+                                " cells over the map's bounds (at most " +
+                                std::to_string(kMaxCells) + ")");
+  }
+  nx_ = static_cast<int>(cells.x());
+  ny_ = static_cast<int>(cells.y());
+  nz_ = static_cast<int>(cells.z());
+  const size_t n = static_cast<size_t>(total);
+  log_odds_.assign(n, 0.0f);
+  observed_.assign(n, 0);
+  stamp_.assign(n, 0);
+}
+
+bool OccupancyGrid::CellOf(const Vec3& p, int* ix, int* iy, int* iz) const {
+  // clamped to the grid, so that a point on (or a rounding error outside) its faces has a cell
+  const Vec3 c = ((p - bounds_.min) / resolution_).cwiseMax(0.0);
+  *ix = static_cast<int>(std::min(c.x(), nx_ - 1.0));
+  *iy = static_cast<int>(std::min(c.y(), ny_ - 1.0));
+  *iz = static_cast<int>(std::min(c.z(), nz_ - 1.0));
+  return bounds_.Contains(p);
+}
+
+Aabb OccupancyGrid::CellBox(long index) const {
+  const long iz = index % nz_, iy = (index / nz_) % ny_,
+             ix = index / (static_cast<long>(nz_) * ny_);
+  const Vec3 min = bounds_.min + resolution_ * Vec3(ix, iy, iz);
+  return {min, (min.array() + resolution_).matrix()};
+}
+
+Occupancy OccupancyGrid::At(const Vec3& p) const {
+  int ix, iy, iz;
+  if (!CellOf(p, &ix, &iy, &iz)) return Occupancy::kUnknown;
+  const size_t k = static_cast<size_t>(Index(ix, iy, iz));
+  if (!observed_[k]) return Occupancy::kUnknown;
+  return log_odds_[k] > 0.0f ? Occupancy::kOccupied : Occupancy::kFree;
+}
+
+void OccupancyGrid::Update(long index, float change) {
+  const size_t k = static_cast<size_t>(index);
+  if (stamp_[k] == frame_) return;
+  stamp_[k] = frame_;
+  const bool was_occupied = observed_[k] && log_odds_[k] > 0.0f;
+  const bool was_free = observed_[k] && !was_occupied;
+  observed_[k] = 1;
+  log_odds_[k] = std::clamp(log_odds_[k] + change, kLowest, kHighest);
+  const bool occupied = log_odds_[k] > 0.0f;
+  occupied_ += static_cast<long>(occupied) - static_cast<long>(was_occupied);
+  free_ += static_cast<long>(!occupied) - static_cast<long>(was_free);
+  if (occupied && !was_occupied) occupied_cells_.insert(index);
+  if (!occupied && was_occupied) occupied_cells_.erase(index);
+}
+
+void OccupancyGrid::Clear(const Vec3& a, const Vec3& b, bool include_end) {
+  // the part of a -> b inside the grid (slabs), then a 3-D DDA (Amanatides and Woo) over it
+  const Vec3 d = b - a;
+  double t0 = 0.0, t1 = 1.0;
+  for (int i = 0; i < 3; ++i) {
+    if (d[i] == 0.0) {
+      if (a[i] < bounds_.min[i] || a[i] > bounds_.max[i]) return;
+      continue;
+    }
+    double lo = (bounds_.min[i] - a[i]) / d[i], hi = (bounds_.max[i] - a[i]) / d[i];
+    if (lo > hi) std::swap(lo, hi);
+    t0 = std::max(t0, lo);
+    t1 = std::min(t1, hi);
+  }
+  if (t0 > t1) return;
+  int cell[3], end[3], step[3];
+  CellOf(a + t0 * d, &cell[0], &cell[1], &cell[2]);
+  CellOf(a + t1 * d, &end[0], &end[1], &end[2]);
+  double next[3], delta[3];
+  for (int i = 0; i < 3; ++i) {
+    step[i] = d[i] > 0 ? 1 : (d[i] < 0 ? -1 : 0);
+    const double edge = bounds_.min[i] + (cell[i] + (step[i] > 0 ? 1 : 0)) * resolution_;
+    next[i] = step[i] != 0 ? (edge - a[i]) / d[i] : 2.0;
+    delta[i] = step[i] != 0 ? resolution_ / std::abs(d[i]) : 2.0;
+  }
+  const bool ends_inside = t1 >= 1.0;
+  for (int guard = nx_ + ny_ + nz_ + 3; guard > 0; --guard) {
+    const bool at_end = cell[0] == end[0] && cell[1] == end[1] && cell[2] == end[2];
+    if (at_end && ends_inside && !include_end) return;
+    Update(Index(cell[0], cell[1], cell[2]), kMiss);
+    if (at_end) return;
+    const int axis = next[0] < next[1] ? (next[0] < next[2] ? 0 : 2) : (next[1] < next[2] ? 1 : 2);
+    if (next[axis] > t1) return;
+    cell[axis] += step[axis];
+    if (cell[axis] < 0 || cell[axis] >= (axis == 0 ? nx_ : axis == 1 ? ny_ : nz_)) return;
+    next[axis] += delta[axis];
+  }
+}
+
+int OccupancyGrid::Insert(const DepthImage& image, double range, const std::vector<bool>& ignored) {
+  ++frame_;
+  const long before = occupied_;
+  const auto is_obstacle = [&ignored](int hit) {
+    return hit >= 0 &&
+           !(static_cast<size_t>(hit) < ignored.size() && ignored[static_cast<size_t>(hit)]);
+  };
+  // a surface point, a millimetre on into the surface: the cell behind a face is the one it
+  // belongs to, whichever side the ray came from
+  const auto end = [&image](int u, int v) {
+    const Vec3 p = image.PointW(u, v);
+    return Vec3(p + 1e-3 * (p - image.origin_W).normalized());
+  };
+  // occupied first: a cell a ray ends in is not cleared by its neighbours' rays this frame
+  for (int v = 0; v < image.height; ++v) {
+    for (int u = 0; u < image.width; ++u) {
+      const size_t k = static_cast<size_t>(v * image.width + u);
+      if (image.depth[k] <= 0.0f || !is_obstacle(image.hit[k])) continue;
+      int ix, iy, iz;
+      if (CellOf(end(u, v), &ix, &iy, &iz)) Update(Index(ix, iy, iz), kHit);
+    }
+  }
+  for (int v = 0; v < image.height; ++v) {
+    for (int u = 0; u < image.width; ++u) {
+      const size_t k = static_cast<size_t>(v * image.width + u);
+      if (image.depth[k] > 0.0f) {
+        Clear(image.origin_W, end(u, v), false);
+      } else if (image.hit[k] == kNoReturn) {
+        Clear(image.origin_W, image.origin_W + image.R_WC * image.RayC(u, v) * range, true);
+      }
+    }
+  }
+  return static_cast<int>(std::max(0L, occupied_ - before));
+}
+
+std::vector<Aabb> OccupancyGrid::OccupiedBoxes(bool columns) const {
+  const auto unknown = [this](long index) { return !observed_[static_cast<size_t>(index)]; };
+  // runs along z within a column (the set is sorted by index, z fastest), grown through unknown
+  // cells with `columns` (overlapping runs of a column then join) ...
+  std::map<std::tuple<long, int, int>, std::vector<int>> runs;  // (ix, z0, z1) -> the iy's
+  long column = -1;
+  int z0 = 0, z1 = -1;
+  const auto flush = [&]() {
+    if (column >= 0) runs[{column / ny_, z0, z1}].push_back(static_cast<int>(column % ny_));
+  };
+  for (auto it = occupied_cells_.begin(); it != occupied_cells_.end();) {
+    const long first = *it;
+    long last = first;
+    for (++it; it != occupied_cells_.end() && *it == last + 1 && *it % nz_ != 0; ++it) last = *it;
+    int lo = static_cast<int>(first % nz_), hi = static_cast<int>(last % nz_);
+    if (columns) {
+      while (lo > 0 && unknown(first - (first % nz_ - lo) - 1)) --lo;
+      while (hi + 1 < nz_ && unknown(last + (hi - last % nz_) + 1)) ++hi;
+    }
+    if (first / nz_ == column && lo <= z1 + 1) {
+      z1 = std::max(z1, hi);  // joins the column's run before it
+      continue;
+    }
+    flush();
+    column = first / nz_;
+    z0 = lo;
+    z1 = hi;
+  }
+  flush();
+  // ... then runs of the same z-run along y
+  std::vector<Aabb> boxes;
+  for (const auto& [key, ys] : runs) {
+    const auto [ix, z0, z1] = key;
+    for (size_t i = 0; i < ys.size();) {
+      size_t j = i;
+      while (j + 1 < ys.size() && ys[j + 1] == ys[j] + 1) ++j;
+      const Vec3 min = bounds_.min + resolution_ * Vec3(ix, ys[i], z0);
+      const Vec3 max = bounds_.min + resolution_ * Vec3(ix + 1, ys[j] + 1, z1 + 1);
+      boxes.push_back({min, max.cwiseMin(bounds_.max)});
+      i = j + 1;
+    }
+  }
+  return boxes;
+}
+
+}  // namespace aerobox

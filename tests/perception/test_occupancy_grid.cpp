@@ -1,0 +1,82 @@
+#include <doctest/doctest.h>
+
+#include <stdexcept>
+
+#include "perception/occupancy_grid.h"
+
+using namespace aerobox;
+
+namespace {
+
+// A wall across the room at x 5..5.3, with the camera at x = 1 looking along +x.
+struct Room {
+  Aabb bounds{Vec3(0, 0, 0), Vec3(10, 6, 3)};
+  std::vector<Aabb> boxes{{Vec3(5, 1, 0), Vec3(5.3, 5, 3)}};
+  State body;
+  DepthCameraParams params;
+  Room() {
+    body.p_W = Vec3(1, 3, 1.5);
+    params.range = 8.0;
+  }
+  DepthImage Frame() { return DepthCamera(params, 1).Capture(body, boxes, bounds); }
+};
+
+}  // namespace
+
+TEST_CASE(
+    "occupancy: a wall seen from the front is occupied, the space before it free, behind it "
+    "unknown") {
+  Room room;
+  OccupancyGrid grid(room.bounds, OccupancyParams());
+  CHECK(grid.At(Vec3(3, 3, 1.5)) == Occupancy::kUnknown);
+  const int added = grid.Insert(room.Frame(), room.params.range, {});
+  CHECK(added > 100);
+  CHECK(grid.At(Vec3(5.05, 3, 1.5)) == Occupancy::kOccupied);  // the wall's face
+  CHECK(grid.At(Vec3(5.05, 2, 1.0)) == Occupancy::kOccupied);
+  CHECK(grid.At(Vec3(3, 3, 1.5)) == Occupancy::kFree);  // between camera and wall
+  CHECK(grid.At(Vec3(4.8, 3.1, 1.6)) == Occupancy::kFree);
+  CHECK(grid.At(Vec3(5.2, 3, 1.5)) == Occupancy::kUnknown);  // inside the wall
+  CHECK(grid.At(Vec3(7, 3, 1.5)) == Occupancy::kUnknown);    // behind it
+  CHECK(grid.At(Vec3(1, 3, 2.9)) == Occupancy::kUnknown);    // out of the field of view
+  // every occupied box is a cell-aligned slab of the wall's face, and together they cover the
+  // occupied cells exactly
+  double volume = 0.0;
+  for (const Aabb& b : grid.OccupiedBoxes()) {
+    CHECK(b.min.x() == doctest::Approx(5.0));
+    CHECK(b.max.x() == doctest::Approx(5.1));
+    volume += b.Size().prod();
+  }
+  CHECK(volume == doctest::Approx(grid.occupied_count() * 1e-3));
+  CHECK(grid.OccupiedBoxes().size() < static_cast<size_t>(grid.occupied_count()) / 5);
+  // the same frame again changes nothing's state; the wall stays occupied
+  CHECK(grid.Insert(room.Frame(), room.params.range, {}) == 0);
+  CHECK(grid.At(Vec3(5.05, 3, 1.5)) == Occupancy::kOccupied);
+}
+
+TEST_CASE("occupancy: a known box clears the space before it and is not added") {
+  Room room;
+  OccupancyGrid grid(room.bounds, OccupancyParams());
+  CHECK(grid.Insert(room.Frame(), room.params.range, {true}) == 0);
+  CHECK(grid.occupied_count() == 0);
+  CHECK(grid.At(Vec3(3, 3, 1.5)) == Occupancy::kFree);
+  CHECK(grid.At(Vec3(7, 3, 1.5)) == Occupancy::kUnknown);
+}
+
+TEST_CASE("occupancy: a box that moved away is cleared by the rays that now pass through it") {
+  Room room;
+  OccupancyGrid grid(room.bounds, OccupancyParams());
+  grid.Insert(room.Frame(), room.params.range, {});
+  REQUIRE(grid.At(Vec3(5.05, 3, 1.5)) == Occupancy::kOccupied);
+  room.boxes.clear();
+  for (int i = 0; i < 5; ++i) grid.Insert(room.Frame(), room.params.range, {});
+  CHECK(grid.At(Vec3(5.05, 3, 1.5)) == Occupancy::kFree);
+  CHECK(grid.occupied_count() == 0);
+  CHECK(grid.OccupiedBoxes().empty());
+}
+
+TEST_CASE("occupancy: a resolution too fine for the bounds is refused naming the key") {
+  OccupancyParams params;
+  params.resolution = 0.001;
+  CHECK_THROWS_WITH_AS(OccupancyGrid(Aabb{Vec3(0, 0, 0), Vec3(100, 100, 10)}, params),
+                       doctest::Contains("sensing.resolution"), std::invalid_argument);
+}
