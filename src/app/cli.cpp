@@ -20,6 +20,7 @@
 #include "common/number_format.h"
 #include "common/quoting.h"
 #include "common/subprocess.h"
+#include "map/forest.h"
 #include "mission/plan.h"
 #include "outputs/files.h"
 #include "outputs/interrupt.h"
@@ -113,7 +114,12 @@ std::string DescribeUnknownBoxes(const FlightSetup& setup) {
   out << unknown << " of " << setup.map.boxes.size() << " boxes, found in flight by ";
   if (sensing.kind == SensingParams::Kind::kCamera) {
     out << "a depth camera along body x (" << FormatNumber(sensing.fov_horizontal) << " x "
-        << FormatNumber(sensing.fov_vertical) << " rad)";
+        << FormatNumber(sensing.fov_vertical) << " rad; whole boxes, through walls)";
+  } else if (sensing.kind == SensingParams::Kind::kDepth) {
+    out << "a depth camera along body x (" << FormatNumber(sensing.fov_horizontal) << " x "
+        << FormatNumber(sensing.fov_vertical) << " rad, " << sensing.camera.width << " x "
+        << sensing.camera.height << " px; line of sight) into a "
+        << FormatNumber(sensing.map.resolution) << " m occupancy map";
   } else {
     out << "a range sensor all round";
   }
@@ -123,6 +129,35 @@ std::string DescribeUnknownBoxes(const FlightSetup& setup) {
       << " after it (a " << FormatNumber(r.time_budget) << " s safety cap), " << r.max_attempts
       << " attempts while braked";
   return out.str();
+}
+
+// `aerobox forest`: a seeded forest written as a map; a bad value is named by its option.
+int RunForest(const ForestParams& params, const std::string& output, std::ostream& out,
+              std::ostream& err) {
+  Map forest;
+  try {
+    forest = MakeForest(params);
+  } catch (const std::invalid_argument& error) {
+    std::string message = error.what();  // "forest.width_max: ..." -> "--width-max: ..."
+    const size_t key = message.find("forest.");
+    if (key != std::string::npos) {
+      const size_t end = message.find_first_of(": ", key);
+      std::string option = message.substr(key + 7, end - key - 7);
+      std::replace(option.begin(), option.end(), '_', '-');
+      message.replace(key, end - key, "--" + option);
+    }
+    throw InputError({"command line", 0}, "", message);
+  }
+  const std::string text = MapJson(forest);
+  if (output.empty() || output == "-") {
+    out << text;
+  } else {
+    WriteFileAtomically(output, text);
+    err << "forest: " << params.pillars << " pillars and " << params.bars << " bars in "
+        << FormatVector(params.size, " x ") << " m, seed " << params.seed << ", written to "
+        << output << "\n";
+  }
+  return kExitReachedGoal;
 }
 
 std::ostream& Row(std::ostream& out, const char* label) {
@@ -587,6 +622,27 @@ class Cli {
     slurm->add_flag("--submit", slurm_options.submit, "submit the array and the merge job");
     slurm->add_flag("--wait", slurm_options.wait, "with --submit: wait until the merge has run");
 
+    forest = app.add_subcommand(
+        "forest",
+        "write a random forest map (Fast-Planner's benchmark: pillars over W x L, optional "
+        "horizontal bars; start and goal at the two ends), as flightsim's JSON");
+    forest->add_option("-o,--output", output, "output file (default: standard output)");
+    forest->add_option("--size", forest_size, "W,L,H [m]: start to goal along x, across, height")
+        ->capture_default_str();
+    forest->add_option("--pillars", forest_params.pillars, "how many pillars")
+        ->capture_default_str();
+    forest->add_option("--width-min", forest_params.width_min, "a pillar's narrowest side [m]")
+        ->capture_default_str();
+    forest->add_option("--width-max", forest_params.width_max, "a pillar's widest side [m]")
+        ->capture_default_str();
+    forest->add_option("--bars", forest_params.bars, "horizontal bars (0.2 m thick, 2-4 m long)")
+        ->capture_default_str();
+    forest
+        ->add_option("--clear-ends", forest_params.clear_ends,
+                     "free ground at each end for the start and the goal [m]")
+        ->capture_default_str();
+    forest->add_option("--seed", forest_params.seed, "random seed")->capture_default_str();
+
     model = app.add_subcommand("model", "write the vehicle's MJCF model alone");
     model->add_option("-o,--output", output, "output file (default: standard output)");
   }
@@ -594,6 +650,10 @@ class Cli {
   // The command given, run; a scenario's commands through SetupFromOptions.
   int Dispatch(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
     if (model->parsed()) return RunModel(output, out);
+    if (forest->parsed()) {
+      forest_params.size = *ParsePointOption(forest_size, "--size");
+      return RunForest(forest_params, output, out, err);
+    }
     if (keys->parsed()) {
       out << ScenarioKeyReference();
       return 0;
@@ -737,6 +797,7 @@ class Cli {
   CLI::App* merge = nullptr;
   CLI::App* slurm = nullptr;
   CLI::App* model = nullptr;
+  CLI::App* forest = nullptr;
   // their options' values
   std::string input;
   std::string start_text;
@@ -769,6 +830,8 @@ class Cli {
   std::vector<std::string> merge_folders;
   std::string merge_out;
   SlurmOptions slurm_options;
+  ForestParams forest_params;
+  std::string forest_size = FormatVector(ForestParams().size, ",");
 };
 
 }  // namespace
