@@ -121,7 +121,7 @@ void WarnBeforeFlight(const FlightSetup& setup, std::ostream& err) {
   if (const std::string warning = LimitsWarning(setup); !warning.empty()) {
     err << "aerobox: warning: " << warning << "\n";
   }
-  if (setup.HasUnknown() && setup.sensing.kind == SensingParams::Kind::kCamera &&
+  if (setup.HasUnknown() && setup.sensing.kind != SensingParams::Kind::kOmni &&
       !setup.flight.face_travel) {
     err << "aerobox: warning: the depth camera looks along the body's x axis and the yaw is "
            "held ([flight] yaw = \"hold\"): flying any other way, it sees sideways; yaw = "
@@ -200,12 +200,24 @@ void GoalsLine(const FlightSetup& setup, const MissionResult& result, std::ostre
 void DiscoveryLine(const MissionResult& result, std::ostream& table) {
   table << "\n  discovery   " << result.revealed_boxes << " of " << result.unknown_boxes
         << " unknown boxes revealed; " << result.replans.size() << " replan(s)";
-  for (const ReplanEvent& e : result.replans) {
+  constexpr size_t kListed = 5;  // the rest are in summary.json
+  for (size_t i = 0; i < result.replans.size(); ++i) {
+    const ReplanEvent& e = result.replans[i];
+    if (i == kListed) {
+      table << "; " << result.replans.size() - kListed << " more in summary.json";
+      break;
+    }
     table << "; at " << e.t << " s (" << e.trigger << "): " << e.outcome << " in "
           << std::setprecision(1) << 1e3 * e.latency << " ms" << std::setprecision(4);
     if (e.time_capped) {
       table << " (cut by [replan] time_budget: not reproducible by seed)";
     }
+  }
+  if (result.occupancy) {
+    table << "\n  map         " << result.occupancy->occupied << " occupied and "
+          << result.occupancy->free << " free cells of " << result.occupancy->cells << " ("
+          << result.occupancy->resolution << " m), from " << result.occupancy->cost.frames
+          << " depth frames";
   }
 }
 

@@ -16,6 +16,7 @@
 #include "bench/planner_comparison.h"
 #include "bench/python_benchmark.h"
 #include "bench/render_benchmark.h"
+#include "bench/navigation_benchmark.h"
 #include "bench/replanning_benchmark.h"
 #include "bench/rl_benchmark.h"
 #include "bench/robustness.h"
@@ -187,6 +188,16 @@ const std::vector<BenchSection>& Sections() {
          out << "## Replanning: 30 % of each map's boxes unknown until seen, " << c.seeds
              << " seeds per map\n\n";
          ReplanningTable(scenarios, c.seeds, 0.3, out, *c.progress);
+       }},
+      {"navigation",
+       [](const BenchContext& c, std::ostream& out) {
+         NavigationBenchParams params;
+         params.scenario = c.Scenario("depth_forest");
+         params.seeds = c.seeds;
+         params.size = c.size;
+         out << "## Navigation: unknown forests seen by the depth camera, " << c.seeds
+             << " seeds per density\n\n";
+         NavigationTable(params, out, *c.progress);
        }},
       {"sweep",
        [](const BenchContext& c, std::ostream& out) {

@@ -184,6 +184,13 @@ MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
   if (replanner) {
     result.replans = replanner->events();
     result.revealed_at = replanner->revealed_at();
+    result.revealed_distance = replanner->revealed_distance();
+    if (const OccupancyGrid* grid = replanner->occupancy()) {
+      result.occupancy = MissionResult::Occupancy{grid->occupied_count(),       grid->free_count(),
+                                                  grid->cell_count(),           grid->resolution(),
+                                                  grid->OccupiedBoxes(),        replanner->cost(),
+                                                  replanner->shared_occupancy()};
+    }
     result.unknown_boxes = replanner->unknown_count();
     result.revealed_boxes = replanner->revealed_count();
   }

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "control/controller.h"
@@ -51,8 +52,18 @@ struct MissionResult {
   // with unknown boxes: every replan, and when each box was revealed ([s]; < 0: never)
   std::vector<ReplanEvent> replans;
   std::vector<double> revealed_at;
+  std::vector<double> revealed_distance;  // [m] from the sensor at that moment (< 0: never)
   int unknown_boxes = 0;
   int revealed_boxes = 0;
+  // with a depth camera: the occupancy map at the end of the flight
+  struct Occupancy {
+    long occupied = 0, free = 0, cells = 0;  // cells
+    double resolution = 0.0;                 // [m]
+    std::vector<Aabb> boxes;                 // the occupied cells, merged
+    SensingCost cost;                        // where the camera's time went
+    std::shared_ptr<const OccupancyGrid> grid;
+  };
+  std::optional<Occupancy> occupancy;
 };
 
 struct MissionParts {

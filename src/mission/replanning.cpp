@@ -18,6 +18,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+const char* const kRetry = "retry after braking";
+// the trajectory within the stopping distance meets space the depth camera has not seen
+const char* const kUnknownAhead = "unknown ahead";
+
 double Seconds(Clock::time_point since) {
   return std::chrono::duration<double>(Clock::now() - since).count();
 }
@@ -42,16 +46,31 @@ TrajectoryWorld ViewOf(const CollisionWorld& world) {
 }  // namespace
 
 void SensingParams::Describe(Archive& a) {
-  a.Enum({"kind", "", "a range sensor all round, or a depth camera along body x"}, &kind,
-         {{Kind::kOmni, "omni"}, {Kind::kCamera, "camera"}});
+  a.Enum({"kind", "",
+          "a range sensor all round, a field of view along body x (both reveal whole boxes, "
+          "through walls), or a depth camera that builds an occupancy map"},
+         &kind, {{Kind::kOmni, "omni"}, {Kind::kCamera, "camera"}, {Kind::kDepth, "depth"}});
   a.Number({"range", "m", "how far the sensor sees"}, &range, 0.1, 1000);
   a.Degrees({"fov", "deg", "the camera's horizontal field (a RealSense D435's depth: 87)"},
             &fov_horizontal, 1, 359);
   a.Degrees({"fov_vertical", "deg", "the camera's vertical field"}, &fov_vertical, 1, 179);
-  a.Number({"rate", "Hz", "updates per second (divides the physics rate)"}, &rate, 0.1, 1000);
+  a.Number({"rate", "Hz", "updates per second (divides the controller's rate)"}, &rate, 0.1, 1000);
+  camera.Describe(a);
+  map.Describe(a);
 }
 
-void SensingParams::Validate() const { ValidateFields(*this, "sensing"); }
+void SensingParams::Validate() const {
+  ValidateFields(*this, "sensing");
+  if (kind == Kind::kDepth) Camera().Validate("sensing");
+}
+
+DepthCameraParams SensingParams::Camera() const {
+  DepthCameraParams c = camera;
+  c.fov_horizontal = fov_horizontal;
+  c.fov_vertical = fov_vertical;
+  c.range = range;
+  return c;
+}
 
 void ReplanParams::Describe(Archive& a) {
   a.Number({"horizon", "s", "ahead of the vehicle, where the new trajectory starts"}, &horizon, 0,
@@ -159,19 +178,77 @@ Replanner::Replanner(const Map& map, const std::vector<bool>& unknown,
       goals_(std::move(goals)),
       path_(std::move(path)),
       seed_(seed),
-      revealed_at_(map.boxes.size(), -1.0) {
+      revealed_at_(map.boxes.size(), -1.0),
+      revealed_distance_(map.boxes.size(), -1.0) {
   sensing_.Validate();
   replan_.Validate();
   for (size_t i = 0; i < unknown_.size() && i < known_.size(); ++i) known_[i] = !unknown_[i];
+  if (sensing_.kind == SensingParams::Kind::kDepth) {
+    for (const Box& box : map_.boxes) extents_.push_back(box.extent);
+    camera_.emplace(sensing_.Camera(), StreamSeed(seed_, SeedStream::kDepthCamera));
+    grid_ = std::make_shared<OccupancyGrid>(map_.bounds, sensing_.map);
+  }
   Rebuild();
 }
 
 void Replanner::Rebuild() {
   std::vector<bool> hidden(known_.size());
   for (size_t i = 0; i < known_.size(); ++i) hidden[i] = !known_[i];
-  const Map known = KnownMap(map_, hidden);
+  Map known = KnownMap(map_, hidden);
+  if (grid_) {
+    // the occupancy map's occupied cells, merged into boxes, are what the planner avoids
+    for (const Aabb& cells : grid_->OccupiedBoxes(sensing_.map.columns)) {
+      known.boxes.push_back({cells, Vec3::Constant(0.5), "occupied cells", 0});
+    }
+  }
   planner_world_.emplace(known, planning_);
   trajectory_world_.emplace(known, trajectory_);
+}
+
+bool Replanner::Sense(double t, const State& state, std::vector<size_t>* newly) {
+  if (camera_) return SenseDepth(t, state, newly);
+  for (size_t i = 0; i < map_.boxes.size(); ++i) {
+    if (known_[i] || !SeesBox(sensing_, state, map_.boxes[i].extent)) continue;
+    const Aabb& b = map_.boxes[i].extent;
+    known_[i] = true;
+    revealed_at_[i] = t;
+    revealed_distance_[i] = (state.p_W.cwiseMax(b.min).cwiseMin(b.max) - state.p_W).norm();
+    newly->push_back(i);
+  }
+  return !newly->empty();
+}
+
+bool Replanner::SenseDepth(double t, const State& state, std::vector<size_t>* newly) {
+  Clock::time_point begin = Clock::now();
+  const DepthImage image = camera_->Capture(state, extents_, map_.bounds);
+  ++cost_.frames;
+  cost_.capture += Seconds(begin);
+  for (int v = 0; v < image.height; ++v) {
+    for (int u = 0; u < image.width; ++u) {
+      const size_t k = static_cast<size_t>(v * image.width + u);
+      const int hit = image.hit[k];
+      if (hit < 0 || image.depth[k] <= 0.0f || known_[static_cast<size_t>(hit)]) continue;
+      const size_t i = static_cast<size_t>(hit);
+      const double distance = (image.PointW(u, v) - image.origin_W).norm();
+      if (revealed_at_[i] < 0) {
+        revealed_at_[i] = t;
+        newly->push_back(i);
+      }
+      if (revealed_at_[i] == t && (revealed_distance_[i] < 0 || distance < revealed_distance_[i])) {
+        revealed_distance_[i] = distance;
+      }
+    }
+  }
+  // boxes known from the start are in the planner's world already: their points only clear
+  // the space before them
+  begin = Clock::now();
+  const int added = grid_->Insert(image, sensing_.range, known_);
+  cost_.fusion += Seconds(begin);
+  if (added == 0) return false;
+  begin = Clock::now();
+  Rebuild();
+  cost_.rebuild += Seconds(begin);
+  return true;
 }
 
 int Replanner::unknown_count() const {
@@ -188,42 +265,150 @@ std::optional<Reference> Replanner::Update(double t, double tr, const State& sta
   if (t + 1e-9 < next_sense_) return std::nullopt;
   while (next_sense_ <= t + 1e-9) next_sense_ += 1.0 / sensing_.rate;
   std::vector<size_t> newly;
-  for (size_t i = 0; i < map_.boxes.size(); ++i) {
-    if (known_[i] || !SeesBox(sensing_, state, map_.boxes[i].extent)) continue;
-    known_[i] = true;
-    revealed_at_[i] = t;
-    newly.push_back(i);
-  }
-  if (!newly.empty()) Rebuild();
+  const bool changed = Sense(t, state, &newly);
+  if (changed && !camera_) Rebuild();
   if (braking_) {
     if (attempts_ >= replan_.max_attempts) return std::nullopt;
-    return Replan(t, tr, goals_reached, current, "retry after braking");
+    return Replan(t, tr, goals_reached, current, kRetry);
   }
-  if (newly.empty()) return std::nullopt;
-  // does the rest of the reference now leave free space?
+  if (changed) {
+    if (const std::optional<Vec3> blocked = FirstBlocked(current, tr)) {
+      return Replan(t, tr, goals_reached, current, TriggerNear(*blocked, newly));
+    }
+  }
+  if (grid_ && UnknownAhead(current, tr, state.v_W.norm())) {
+    return Replan(t, tr, goals_reached, current, kUnknownAhead);
+  }
+  return std::nullopt;
+}
+
+std::optional<Vec3> Replanner::FirstBlocked(const Reference& current, double tr) const {
   constexpr double kStep = 0.02;  // [s]
   Vec3 previous = current.evaluate(std::min(tr, current.duration), kPosition);
   for (double s = tr + kStep;; s += kStep) {
     const double at = std::min(s, current.duration);
     const Vec3 p = current.evaluate(at, kPosition);
-    if (!trajectory_world_->IsSegmentFree(previous, p)) {
-      // the newly revealed box nearest the blocked point triggered it
-      size_t trigger = newly.front();
-      double best = std::numeric_limits<double>::infinity();
-      for (const size_t i : newly) {
-        const Aabb& b = map_.boxes[i].extent;
-        const double d = (p.cwiseMax(b.min).cwiseMin(b.max) - p).norm();
-        if (d < best) {
-          best = d;
-          trigger = i;
-        }
-      }
-      return Replan(t, tr, goals_reached, current, map_.boxes[trigger].name);
-    }
+    if (!trajectory_world_->IsSegmentFree(previous, p)) return p;
     previous = p;
-    if (at >= current.duration) break;
+    if (at >= current.duration) return std::nullopt;
   }
-  return std::nullopt;
+}
+
+std::string Replanner::TriggerNear(const Vec3& p, std::vector<size_t> newly) const {
+  if (newly.empty()) {
+    // the depth camera's new cells belong to boxes seen before
+    for (size_t i = 0; i < revealed_at_.size(); ++i) {
+      if (revealed_at_[i] >= 0) newly.push_back(i);
+    }
+  }
+  std::string name = "occupied cells";
+  double best = std::numeric_limits<double>::infinity();
+  for (const size_t i : newly) {
+    const Aabb& b = map_.boxes[i].extent;
+    const double d = (p.cwiseMax(b.min).cwiseMin(b.max) - p).norm();
+    if (d < best) {
+      best = d;
+      name = map_.boxes[i].name;
+    }
+  }
+  return name;
+}
+
+bool Replanner::UnknownAhead(const Reference& reference, double from, double speed) const {
+  // what the vehicle needs to stop: the braking distance and the way it goes while the camera
+  // reads and the replan starts
+  const double decel = BrakingDeceleration(params_.max_tilt);
+  const double reach =
+      speed * speed / (2 * decel) + speed * (1.0 / sensing_.rate + replan_.horizon);
+  constexpr double kNear = 0.3;   // [m] nearer than this the camera cannot see beside it
+  constexpr double kStep = 0.02;  // [s]
+  Vec3 previous = reference.evaluate(std::min(from, reference.duration), kPosition);
+  double length = 0.0;
+  for (double s = from + kStep; length <= reach; s += kStep) {
+    const double at = std::min(s, reference.duration);
+    const Vec3 p = reference.evaluate(at, kPosition);
+    length += (p - previous).norm();
+    previous = p;
+    if (length >= kNear && length <= reach && grid_->At(p) == Occupancy::kUnknown) return true;
+    if (at >= reference.duration) break;
+  }
+  return false;
+}
+
+std::optional<std::vector<Vec3>> Replanner::FindPath(const Vec3& start, int goals_reached,
+                                                     ReplanEvent* event) const {
+  const auto plan_leg = [&](const Vec3& from, const Vec3& to, std::uint64_t salt,
+                            std::vector<Vec3>* out) {
+    // the start may lie within the planner's clearance of a box just seen: the trajectory's
+    // world (less clearance) decides there
+    const CollisionWorld& world =
+        planner_world_->IsPointFree(from) ? *planner_world_ : *trajectory_world_;
+    const Validity validity{
+        [&world](const Vec3& p) { return world.IsPointFree(p); },
+        [&world](const Vec3& a, const Vec3& b) { return world.IsSegmentFree(a, b); }};
+    // the flight's planner, through its seam; RRT* to [replan]'s counts
+    PlannerConfig config = planner_;
+    const std::uint64_t seed = seed_ + 7919ULL * (events_.size() + 1) + salt;
+    if (config.kind == "rrt_star") {
+      RrtStarParams rrt = config.params.GetOr<RrtStarParams>();
+      rrt.time_budget = replan_.time_budget;
+      rrt.max_iterations = replan_.iterations;
+      rrt.max_search_iterations = replan_.search_iterations;
+      rrt.record_tree = false;
+      rrt.seed = seed;
+      config.params = PluginParameters::Of(rrt);
+    }
+    const PlanResult leg =
+        MakePlanner(config, PlannerContext{world.free_bounds(), validity, seed})->Plan(from, to);
+    event->time_capped |= leg.stats.time_capped;
+    if (leg.status != PlanStatus::kSolved) return false;
+    out->insert(out->end(), leg.path.begin() + 1, leg.path.end());
+    return true;
+  };
+  // first, the local repair: to the first vertex of the path beyond the blocked stretch from
+  // which the rest of the path is free (and no goal is skipped)
+  std::vector<Vec3> path = {start};
+  const size_t rejoin = Rejoin(start, goals_reached);
+  if (rejoin < path_.size() && plan_leg(start, path_[rejoin], 0, &path)) {
+    path.insert(path.end(), path_.begin() + static_cast<long>(rejoin) + 1, path_.end());
+    return path;
+  }
+  // otherwise leg by leg through the goals still ahead
+  std::vector<Vec3> stops = {start};
+  for (size_t g = static_cast<size_t>(std::max(0, goals_reached)); g < goals_.size(); ++g) {
+    stops.push_back(goals_[g]);
+  }
+  path = {start};
+  if (stops.size() < 2) return std::nullopt;
+  for (size_t leg = 1; leg < stops.size(); ++leg) {
+    if (!plan_leg(stops[leg - 1], stops[leg], leg, &path)) return std::nullopt;
+  }
+  return path;
+}
+
+size_t Replanner::Rejoin(const Vec3& start, int goals_reached) const {
+  const CollisionWorld& world = *planner_world_;
+  size_t nearest = 0;  // the path's vertex nearest the start
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < path_.size(); ++i) {
+    const double d = (path_[i] - start).norm();
+    if (d < best) {
+      best = d;
+      nearest = i;
+    }
+  }
+  size_t rejoin = path_.size();
+  for (size_t j = path_.size(); j-- > nearest + 1;) {
+    if (!world.IsPointFree(path_[j])) break;
+    if (j + 1 < path_.size() && !world.IsSegmentFree(path_[j], path_[j + 1])) break;
+    rejoin = j;
+  }
+  for (size_t i = nearest + 1; i < rejoin && i < path_.size(); ++i) {
+    for (size_t g = static_cast<size_t>(std::max(0, goals_reached)); g + 1 < goals_.size(); ++g) {
+      if ((path_[i] - goals_[g]).norm() < 1e-6) return path_.size();  // it would skip a goal
+    }
+  }
+  return rejoin;
 }
 
 std::optional<Reference> Replanner::Replan(double t, double tr, int goals_reached,
@@ -249,134 +434,71 @@ std::optional<Reference> Replanner::Replan(double t, double tr, int goals_reache
   for (double s = th; s < current.duration; s += 0.05) {
     event.abandoned.push_back(current.evaluate(s, kPosition));
   }
-  const auto plan_leg = [&](const Vec3& from, const Vec3& to, std::uint64_t salt,
-                            std::vector<Vec3>* out) {
-    // the start may lie within the planner's clearance of a box just seen: the trajectory's
-    // world (less clearance) decides there
-    const CollisionWorld& world =
-        planner_world_->IsPointFree(from) ? *planner_world_ : *trajectory_world_;
-    const Validity validity{
-        [&world](const Vec3& p) { return world.IsPointFree(p); },
-        [&world](const Vec3& a, const Vec3& b) { return world.IsSegmentFree(a, b); }};
-    // the flight's planner, through its seam; RRT* to [replan]'s counts
-    PlannerConfig config = planner_;
-    const std::uint64_t seed = seed_ + 7919ULL * (events_.size() + 1) + salt;
-    if (config.kind == "rrt_star") {
-      RrtStarParams rrt = config.params.GetOr<RrtStarParams>();
-      rrt.time_budget = replan_.time_budget;
-      rrt.max_iterations = replan_.iterations;
-      rrt.max_search_iterations = replan_.search_iterations;
-      rrt.record_tree = false;
-      rrt.seed = seed;
-      config.params = PluginParameters::Of(rrt);
-    }
-    const PlanResult leg =
-        MakePlanner(config, PlannerContext{world.free_bounds(), validity, seed})->Plan(from, to);
-    event.time_capped |= leg.stats.time_capped;
-    if (leg.status != PlanStatus::kSolved) return false;
-    out->insert(out->end(), leg.path.begin() + 1, leg.path.end());
-    return true;
-  };
-  const Clock::time_point planning = Clock::now();
-  std::vector<Vec3> path = {start.p_W};
-  bool found = false;
-  // first, the local repair: to the first vertex of the path beyond the blocked stretch from
-  // which the rest of the path is free (and no goal is skipped)
-  {
-    const CollisionWorld& world = *planner_world_;
-    size_t nearest = 0;  // the path's vertex nearest the start
-    double best = std::numeric_limits<double>::infinity();
-    for (size_t i = 0; i < path_.size(); ++i) {
-      const double d = (path_[i] - start.p_W).norm();
-      if (d < best) {
-        best = d;
-        nearest = i;
-      }
-    }
-    size_t rejoin = path_.size();
-    for (size_t j = path_.size(); j-- > nearest + 1;) {
-      if (!world.IsPointFree(path_[j])) break;
-      if (j + 1 < path_.size() && !world.IsSegmentFree(path_[j], path_[j + 1])) break;
-      rejoin = j;
-    }
-    bool skips_goal = false;
-    for (size_t i = nearest + 1; i < rejoin && i < path_.size(); ++i) {
-      for (size_t g = static_cast<size_t>(std::max(0, goals_reached)); g + 1 < goals_.size(); ++g) {
-        if ((path_[i] - goals_[g]).norm() < 1e-6) skips_goal = true;
-      }
-    }
-    if (rejoin < path_.size() && !skips_goal && plan_leg(start.p_W, path_[rejoin], 0, &path)) {
-      path.insert(path.end(), path_.begin() + static_cast<long>(rejoin) + 1, path_.end());
-      found = true;
-    }
-  }
-  // otherwise RRT* leg by leg through the goals still ahead
-  if (!found) {
-    std::vector<Vec3> stops = {start.p_W};
-    for (size_t g = static_cast<size_t>(std::max(0, goals_reached)); g < goals_.size(); ++g) {
-      stops.push_back(goals_[g]);
-    }
-    path = {start.p_W};
-    found = stops.size() >= 2;
-    for (size_t leg = 1; leg < stops.size() && found; ++leg) {
-      found = plan_leg(stops[leg - 1], stops[leg], leg, &path);
-    }
-  }
-  event.planning_time = Seconds(planning);
-  const auto replaced_by = [&event](const PiecewiseTrajectory& t) {
-    for (double s = 0; s <= t.duration() + 1e-9; s += 0.05) {
-      event.replacement.push_back(t.Evaluate3(s, kPosition));
-      event.replacement_speeds.push_back(t.Evaluate3(s, kVelocity).norm());
-    }
-  };
   const auto done = [&](std::optional<Reference> reference, const std::string& outcome) {
     event.outcome = outcome;
     event.latency = Seconds(begin);
     // a retry while braked is recorded only when it succeeds
-    if (trigger != "retry after braking" || reference) events_.push_back(event);
+    if (trigger != kRetry || reference) events_.push_back(event);
     return reference;
   };
-  if (found) {
-    event.path_length = PathLength(path);
+  // unknown space within the stopping distance: brake, without searching
+  const bool unknown_ahead = trigger == kUnknownAhead;
+  const Clock::time_point planning = Clock::now();
+  const std::optional<std::vector<Vec3>> path =
+      unknown_ahead ? std::nullopt : FindPath(start.p_W, goals_reached, &event);
+  event.planning_time = Seconds(planning);
+  if (path) {
+    event.path_length = PathLength(*path);
     const Clock::time_point solving = Clock::now();
-    const TrajectoryResult next = Continue(start, path);
+    const TrajectoryResult next = Continue(start, *path);
     event.solve_time = Seconds(solving);
     if (next.status == TrajectoryStatus::kSolved) {
+      Reference spliced = Splice(current, th, next.trajectory);
+      // braked before unknown space: go on only once the vehicle can stop before it
+      if (grid_ && trigger == kRetry && UnknownAhead(spliced, th, start.v_W.norm())) {
+        return done(std::nullopt, "braked, unknown ahead");
+      }
       braking_ = false;
       attempts_ = 0;
-      path_ = path;
-      replaced_by(next.trajectory);
-      return done(Splice(current, th, next.trajectory),
-                  trigger == "retry after braking" ? "replanned after braking" : "replanned");
+      path_ = *path;
+      ReplacedBy(next.trajectory, &event);
+      return done(std::move(spliced), trigger == kRetry ? "replanned after braking" : "replanned");
     }
   }
-  ++attempts_;
+  if (!unknown_ahead) ++attempts_;
   if (braking_) return done(std::nullopt, "braked, still searching");
-  // brake: to rest along the current direction of travel, as far as the known world allows
   braking_ = true;
+  const std::string why = unknown_ahead ? "unknown ahead" : path ? "no trajectory" : "no path";
+  if (start.v_W.norm() < 1e-3) return done(std::nullopt, why);
+  const std::optional<PiecewiseTrajectory> brake = Brake(start);
+  if (!brake) return done(std::nullopt, why + ", and no room to brake");
+  ReplacedBy(*brake, &event);
+  return done(Splice(current, th, *brake), "braking (" + why + ")");
+}
+
+void Replanner::ReplacedBy(const PiecewiseTrajectory& trajectory, ReplanEvent* event) {
+  for (double s = 0; s <= trajectory.duration() + 1e-9; s += 0.05) {
+    event->replacement.push_back(trajectory.Evaluate3(s, kPosition));
+    event->replacement_speeds.push_back(trajectory.Evaluate3(s, kVelocity).norm());
+  }
+}
+
+std::optional<PiecewiseTrajectory> Replanner::Brake(const StartState& start) const {
+  // to rest along the current direction of travel, at the braking distance (longer while the
+  // vehicle still accelerates forward); when that is infeasible further, and when the known
+  // world has no room for it nearer
   const double speed = start.v_W.norm();
-  const std::string why = found ? "no trajectory" : "no path";
-  if (speed < 1e-3) return done(std::nullopt, why);
-  // brake: to rest along the current direction of travel, at the braking distance (longer
-  // while the vehicle still accelerates forward); when that is infeasible further, and when
-  // the known world has no room for it nearer
   const Vec3 direction = start.v_W / speed;
   const double decel = BrakingDeceleration(params_.max_tilt);
   const double forward = std::max(0.0, start.a_W.dot(direction));                 // [m/s^2]
   const double distance = speed * speed / (2 * decel) * (1.0 + forward / decel);  // [m]
-  TrajectoryResult brake;
   for (const double factor : {1.0, 1.6, 2.5, 0.7, 0.5}) {
     const Vec3 stop = start.p_W + std::max(0.05, factor * distance) * direction;
     if (!trajectory_world_->IsSegmentFree(start.p_W, stop)) continue;
-    brake = Continue(start, {start.p_W, stop});
-    if (brake.status == TrajectoryStatus::kSolved) break;
+    TrajectoryResult brake = Continue(start, {start.p_W, stop});
+    if (brake.status == TrajectoryStatus::kSolved) return std::move(brake.trajectory);
   }
-  if (brake.status != TrajectoryStatus::kSolved) {
-    return done(std::nullopt, why + ", and no room to brake");
-  }
-  replaced_by(brake.trajectory);
-  return done(Splice(current, th, brake.trajectory),
-              found ? "braking (no trajectory)" : "braking (no path)");
+  return std::nullopt;
 }
 
 TrajectoryResult Replanner::Continue(const StartState& start, const std::vector<Vec3>& path) const {

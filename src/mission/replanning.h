@@ -13,25 +13,36 @@
 #include "geometry/collision_world.h"
 #include "map/map.h"
 #include "mission/flight.h"
+#include "perception/depth_camera.h"
+#include "perception/occupancy_grid.h"
 #include "planning/planner.h"
 #include "trajectory/generators.h"
 #include "trajectory/trajectory_generator.h"
 
 namespace aerobox {
 
-// The range sensor that reveals boxes: a box is revealed when any part of it is within range
-// (omnidirectional) or within range and the field of view around the body's x axis (a depth
-// camera), at the sensor's rate. Nothing occludes (a box behind another is seen too).
+// What finds the unknown boxes in flight, at the sensor's rate:
+// - kOmni: a box is revealed whole when any part of it is within range;
+// - kCamera: ... within range and the field of view around the body's x axis; for both, nothing
+//   occludes (a box behind another is seen too), and the planner then knows the whole box;
+// - kDepth: a depth camera (perception/depth_camera.h) whose rays stop at the first surface;
+//   its points build an occupancy map (perception/occupancy_grid.h), and the planner avoids the
+//   map's occupied cells, not the boxes: unknown space counts as free (optimistic), and the speed
+//   cap keeps the vehicle able to stop within what the camera sees.
 struct SensingParams {
-  enum class Kind { kOmni, kCamera };
+  enum class Kind { kOmni, kCamera, kDepth };
   Kind kind = Kind::kOmni;
   double range = 3.0;              // [m]
   double fov_horizontal = 1.5184;  // [rad] 87 deg (an Intel RealSense D435's depth field)
   double fov_vertical = 1.0123;    // [rad] 58 deg
-  double rate = 30.0;              // [Hz] divides the physics rate
+  double rate = 25.0;              // [Hz] divides the controller's rate (so the physics rate)
+  DepthCameraParams camera;        // kDepth: size, mounting, noise
+  OccupancyParams map;             // kDepth: the occupancy map's resolution
 
   void Describe(Archive& a);  // [sensing] (common/schema.h)
   void Validate() const;      // throws std::invalid_argument naming the field
+  // The depth camera's parameters, with the field of view and range of [sensing].
+  DepthCameraParams Camera() const;
 };
 
 // Replanning in flight: from the reference `horizon` seconds ahead of the vehicle, RRT* per leg
@@ -48,6 +59,14 @@ struct ReplanParams {
 
   void Describe(Archive& a);  // [replan] (common/schema.h)
   void Validate() const;
+};
+
+// Where a depth camera's time goes [s of wall time, summed over the flight].
+struct SensingCost {
+  int frames = 0;
+  double capture = 0.0;  // ray casting the depth images
+  double fusion = 0.0;   // into the occupancy map
+  double rebuild = 0.0;  // the planner's world from the occupied cells
 };
 
 // One replan: when, what triggered it, how long it took, what came of it.
@@ -115,14 +134,40 @@ class Replanner {
                                   const Reference& current);
 
   const std::vector<ReplanEvent>& events() const { return events_; }
-  // [s] of flight when each box was revealed (negative: known from the start or never seen)
+  // [s] of flight when each box was revealed (negative: known from the start or never seen);
+  // with a depth camera, when a ray first hit it
   const std::vector<double>& revealed_at() const { return revealed_at_; }
+  // [m] from the sensor when each box was revealed (negative: not revealed): with a depth
+  // camera, the nearest of the first frame's points on it; else the nearest point of the box
+  const std::vector<double>& revealed_distance() const { return revealed_distance_; }
+  // kDepth: the occupancy map (nothing for the other kinds)
+  const OccupancyGrid* occupancy() const { return grid_.get(); }
+  std::shared_ptr<const OccupancyGrid> shared_occupancy() const { return grid_; }
+  const SensingCost& cost() const { return cost_; }
   int unknown_count() const;
   int revealed_count() const;
 
  private:
   std::optional<Reference> Replan(double t, double tr, int goals_reached, const Reference& current,
                                   const std::string& trigger);
+  // The first point of the reference after `tr` where it leaves free space.
+  std::optional<Vec3> FirstBlocked(const Reference& current, double tr) const;
+  // The name of the box among `newly` (all revealed when empty) nearest `p`.
+  std::string TriggerNear(const Vec3& p, std::vector<size_t> newly) const;
+  // kDepth: true when the reference from `from` [s], within the distance a vehicle at `speed`
+  // [m/s] needs to stop, passes a cell the camera has not seen.
+  bool UnknownAhead(const Reference& reference, double from, double speed) const;
+  // A path from `start` through the goals still ahead: first the local repair, then leg by leg.
+  std::optional<std::vector<Vec3>> FindPath(const Vec3& start, int goals_reached,
+                                            ReplanEvent* event) const;
+  // The vertex of the current path the local repair rejoins (its size: none).
+  size_t Rejoin(const Vec3& start, int goals_reached) const;
+  // A stop along the direction of travel, when the known world has room for one.
+  std::optional<PiecewiseTrajectory> Brake(const StartState& start) const;
+  static void ReplacedBy(const PiecewiseTrajectory& trajectory, ReplanEvent* event);
+  // One reading at `t`: the boxes it revealed first; true when what the planner avoids changed.
+  bool Sense(double t, const State& state, std::vector<size_t>* newly);
+  bool SenseDepth(double t, const State& state, std::vector<size_t>* newly);
   // The trajectory from `start` along `path`, through the seam.
   TrajectoryResult Continue(const StartState& start, const std::vector<Vec3>& path) const;
 
@@ -141,6 +186,11 @@ class Replanner {
   std::vector<Vec3> path_;  // the path the reference flies, updated with each replan
   std::uint64_t seed_;
   std::vector<double> revealed_at_;
+  std::vector<double> revealed_distance_;
+  std::vector<Aabb> extents_;            // every box of the map: what the depth camera sees
+  std::optional<DepthCamera> camera_;    // kDepth
+  std::shared_ptr<OccupancyGrid> grid_;  // kDepth
+  SensingCost cost_;
   std::optional<CollisionWorld> planner_world_, trajectory_world_;
   double next_sense_ = 0.0;
   bool braking_ = false;  // the last attempt found nothing: the reference brakes to a stop

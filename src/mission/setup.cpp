@@ -1,8 +1,10 @@
 #include "mission/setup.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
+#include "common/number_format.h"
 #include "scene/scene_mjcf.h"
 #include "vehicle/quad_params.h"
 
@@ -44,6 +46,15 @@ void FlightSetup::Validate() const {
   planning.rrt.Validate();
   planning.lattice.Validate();
   planning.trajectory.Validate();
+  if (HasUnknown()) {
+    // the sensor reads at control steps
+    const double per_period = controller.rate / sensing.rate;
+    if (std::abs(per_period - std::round(per_period)) > 1e-6) {
+      throw std::invalid_argument(
+          "sensing.rate: " + FormatNumber(sensing.rate) + " Hz must divide the controller's rate " +
+          FormatNumber(controller.rate) + " Hz (the sensor reads at control steps)");
+    }
+  }
   if (TrajectoryGenerators().Find(planning.trajectory_method) == nullptr) {
     throw std::invalid_argument("unknown trajectory generator '" + planning.trajectory_method +
                                 "'");

@@ -147,6 +147,29 @@ JsonObject RunSummary(const FlightSetup& setup, const MissionResult& result,
       replans.push_back(r);
     }
     summary.Add("replans", replans);
+    // when and how far away each box was first seen
+    std::vector<JsonObject> revealed;
+    for (size_t i = 0; i < result.revealed_at.size() && i < setup.map.boxes.size(); ++i) {
+      if (result.revealed_at[i] < 0) continue;
+      JsonObject r;
+      r.Add("box", setup.map.boxes[i].name).Add("t_s", result.revealed_at[i]);
+      if (i < result.revealed_distance.size()) r.Add("distance_m", result.revealed_distance[i]);
+      revealed.push_back(r);
+    }
+    summary.Add("revealed", revealed);
+    if (result.occupancy) {
+      const MissionResult::Occupancy& o = *result.occupancy;
+      JsonObject map;
+      map.Add("resolution_m", o.resolution)
+          .Add("cells", static_cast<long long>(o.cells))
+          .Add("occupied_cells", static_cast<long long>(o.occupied))
+          .Add("free_cells", static_cast<long long>(o.free))
+          .Add("depth_frames", o.cost.frames)
+          .Add("ray_cast_s", o.cost.capture)
+          .Add("fusion_s", o.cost.fusion)
+          .Add("planner_world_s", o.cost.rebuild);
+      summary.Add("occupancy", map);
+    }
   }
   // the world it flew in: what was on
   JsonObject wind;

@@ -516,6 +516,25 @@ void AddMission(const MissionResult& mission, py::dict* result) {
   r["unknown_boxes"] = mission.unknown_boxes;
   r["revealed_boxes"] = mission.revealed_boxes;
   r["revealed_at"] = mission.revealed_at;
+  r["revealed_distance"] = mission.revealed_distance;
+  if (mission.occupancy) {
+    // the depth camera's occupancy map at the end: its size and its occupied cells as boxes
+    const MissionResult::Occupancy& o = *mission.occupancy;
+    py::dict map;
+    map["resolution"] = o.resolution;
+    map["cells"] = o.cells;
+    map["occupied"] = o.occupied;
+    map["free"] = o.free;
+    py::array_t<double> boxes({static_cast<py::ssize_t>(o.boxes.size()), py::ssize_t{6}});
+    for (size_t i = 0; i < o.boxes.size(); ++i) {
+      for (int k = 0; k < 3; ++k) {
+        boxes.mutable_at(static_cast<py::ssize_t>(i), k) = o.boxes[i].min[k];
+        boxes.mutable_at(static_cast<py::ssize_t>(i), k + 3) = o.boxes[i].max[k];
+      }
+    }
+    map["occupied_boxes"] = boxes;
+    r["occupancy"] = map;
+  }
   py::list replans;
   for (const ReplanEvent& event : mission.replans) replans.append(ReplanDict(event));
   r["replans"] = replans;

@@ -489,8 +489,19 @@ const std::pair<const char*, SectionReader> kSections[] = {
      }},
     {"sensors", [](const toml::table& t, const SourceLocation& at,
                    Scenario* s) { ReadSensors(t, at.file, at.line, &s->sensors); }},
-    {"sensing", [](const toml::table& t, const SourceLocation& at,
-                   Scenario* s) { ReadFields(t, at.file, "sensing.", &s->sensing); }},
+    {"sensing",
+     [](const toml::table& t, const SourceLocation& at, Scenario* s) {
+       ReadFields(t, at.file, "sensing.", &s->sensing);
+       try {
+         s->sensing.Validate();  // what one key's range cannot say: a depth camera's field
+       } catch (const std::invalid_argument& e) {
+         // "sensing.fov: ...": the line of the key it names
+         const std::string what = e.what();
+         const std::string key = what.substr(8, what.find(':') - 8);
+         const toml::node* node = t.get(key);
+         throw InputError({at.file, node ? LineOf(*node) : at.line}, "", what);
+       }
+     }},
     {"replan", [](const toml::table& t, const SourceLocation& at,
                   Scenario* s) { ReadFields(t, at.file, "replan.", &s->replan); }},
     {"render",
@@ -869,7 +880,7 @@ FlightSetup SetupFrom(const std::string& path, std::optional<Scenario> scenario,
   // a depth camera looks along body x: unless the yaw was chosen, it turns with the travel, or
   // the vehicle would fly sideways into what it cannot see
   if (scenario && !scenario->yaw_given && setup.HasUnknown() &&
-      setup.sensing.kind == SensingParams::Kind::kCamera) {
+      setup.sensing.kind != SensingParams::Kind::kOmni) {
     setup.flight.face_travel = true;
   }
   if (setup.planning.trajectory_method == "given" && !setup.planning.given_trajectory.empty()) {

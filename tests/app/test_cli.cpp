@@ -86,7 +86,7 @@ TEST_CASE("check prints a summary of a good map and exits 0") {
   CHECK(u.code == kExitReachedGoal);
   CHECK(u.out.find("unknown   1 of 2 boxes, found in flight by a depth camera along body x") !=
         std::string::npos);
-  CHECK(u.out.find("2.5 m at 30 Hz; replanning 0.3 s ahead, RRT* at most 3000 iterations to a "
+  CHECK(u.out.find("2.5 m at 25 Hz; replanning 0.3 s ahead, RRT* at most 3000 iterations to a "
                    "first solution and 200 after it") != std::string::npos);
   // a depth camera turns the yaw along the travel, unless the scenario chose the yaw
   CHECK(u.out.find("; yaw along the travel") != std::string::npos);

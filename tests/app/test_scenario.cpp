@@ -491,7 +491,15 @@ TEST_CASE("unknown boxes, [sensing] and [replan]: the keys and their errors") {
   CHECK(ScenarioError("map = \"m.txt\"\nunknown_fraction = 2\n") ==
         "scenes/x/scenario.toml:2: unknown_fraction: expected a number from 0 to 1");
   CHECK(ScenarioError("map = \"m.txt\"\n[sensing]\nkind = \"lidar\"\n") ==
-        "scenes/x/scenario.toml:3: sensing.kind: expected \"omni\" or \"camera\"");
+        "scenes/x/scenario.toml:3: sensing.kind: expected \"omni\", \"camera\" or \"depth\"");
+  // a depth camera: its settings, and what a pinhole cannot be
+  CHECK(ScenarioError("map = \"m.txt\"\n[sensing]\nkind = \"depth\"\nwidth = 0\n") ==
+        "scenes/x/scenario.toml:4: sensing.width: expected a whole number from 1 to 4096");
+  CHECK(ScenarioError("map = \"m.txt\"\n[sensing]\nkind = \"depth\"\nfov = 180\n") ==
+        "scenes/x/scenario.toml:4: sensing.fov: a depth camera sees less than 180 deg (got 180 "
+        "deg)");
+  CHECK(ScenarioError("map = \"m.txt\"\n[sensing]\nkind = \"depth\"\nfov_vertical = 180\n")
+            .find("scenario.toml:4: sensing.fov_vertical:") != std::string::npos);
   CHECK(ScenarioError("map = \"m.txt\"\n[replan]\nlookahead = 1\n") ==
         "scenes/x/scenario.toml:3: replan.lookahead: unknown key (expected horizon, iterations, "
         "search_iterations, time_budget or max_attempts)");

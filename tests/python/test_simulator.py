@@ -471,6 +471,24 @@ class WholeRun(unittest.TestCase):
         self.assertEqual(len(result["revealed_at"]), len(aerobox.read_map(
             os.path.join(SOURCE, "scenes", "maze", "map.json")).boxes))
 
+    def test_a_depth_camera_from_keywords(self):
+        scenario = os.path.join(SOURCE, "scenes", "maze_unknown", "scenario.toml")
+        result = aerobox.fly(scenario, sensing={"kind": "depth", "range": 4.0, "width": 80,
+                                                "height": 60, "resolution": 0.1})
+        self.assertEqual(result["mission_status"], "reached goal")
+        boxes = len(aerobox.read_map(os.path.join(SOURCE, "scenes", "maze", "map.json")).boxes)
+        self.assertEqual(len(result["revealed_distance"]), boxes)
+        seen = [d for d, t in zip(result["revealed_distance"], result["revealed_at"]) if t >= 0]
+        self.assertEqual(len(seen), result["revealed_boxes"])
+        self.assertTrue(all(0 < d <= 4.0 for d in seen))
+        occupancy = result["occupancy"]
+        self.assertEqual(occupancy["resolution"], 0.1)
+        self.assertGreater(occupancy["occupied"], 0)
+        self.assertEqual(occupancy["occupied_boxes"].shape[1], 6)
+        with self.assertRaises(ValueError) as raised:
+            aerobox.fly(scenario, sensing={"kind": "depth", "fov": 190})
+        self.assertIn("sensing.fov", str(raised.exception))
+
     def test_a_mission_from_keywords_with_a_python_controller(self):
         scenario = os.path.join(SOURCE, "scenes", "maze", "scenario.toml")
         goals = [[1.5, 3.0, 1.5], [5.0, 4.0, 1.5], [9.0, 7.0, 1.5]]
