@@ -214,10 +214,10 @@ void DiscoveryLine(const MissionResult& result, std::ostream& table) {
     }
   }
   if (result.occupancy) {
-    table << "\n  map         " << result.occupancy->occupied << " occupied and "
-          << result.occupancy->free << " free cells of " << result.occupancy->cells << " ("
-          << result.occupancy->resolution << " m), from " << result.occupancy->cost.frames
-          << " depth frames";
+    const OccupancyGrid& grid = *result.occupancy->grid;
+    table << "\n  map         " << grid.occupied_count() << " occupied and " << grid.free_count()
+          << " free cells of " << grid.cell_count() << " (" << grid.resolution() << " m), from "
+          << result.occupancy->cost.frames << " depth frames";
   }
 }
 

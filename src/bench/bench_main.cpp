@@ -13,10 +13,10 @@
 
 #include "bench/city_benchmark.h"
 #include "bench/flight_benchmark.h"
+#include "bench/navigation_benchmark.h"
 #include "bench/planner_comparison.h"
 #include "bench/python_benchmark.h"
 #include "bench/render_benchmark.h"
-#include "bench/navigation_benchmark.h"
 #include "bench/replanning_benchmark.h"
 #include "bench/rl_benchmark.h"
 #include "bench/robustness.h"

@@ -92,9 +92,7 @@ void NavigationTable(const NavigationBenchParams& params, std::ostream& out,
       if (result.status == MissionStatus::kReachedGoal) {
         ++reached;
       } else {
-        std::string why = result.flown ? ToString(result.flight.status) : ToString(result.status);
-        if (!result.flight.obstacle.empty()) why += " with " + result.flight.obstacle;
-        failures += (failures.empty() ? "" : ", ") + std::to_string(seed) + ": " + why;
+        failures += (failures.empty() ? "" : ", ") + std::to_string(seed) + ": " + Outcome(result);
       }
       contacts += result.flown && result.flight.status == FlightStatus::kCollision ? 1 : 0;
       replans += static_cast<int>(result.replans.size());

@@ -33,9 +33,7 @@ void ReplanningTable(const std::vector<std::string>& scenarios, int seeds, doubl
       if (result.status == MissionStatus::kReachedGoal) {
         ++reached;
       } else {
-        std::string why = result.flown ? ToString(result.flight.status) : ToString(result.status);
-        if (!result.flight.obstacle.empty()) why += " with " + result.flight.obstacle;
-        failures += (failures.empty() ? "" : ", ") + std::to_string(seed) + ": " + why;
+        failures += (failures.empty() ? "" : ", ") + std::to_string(seed) + ": " + Outcome(result);
       }
       if (result.flown && result.flight.status == FlightStatus::kCollision) ++contacts;
       for (const ReplanEvent& e : result.replans) {

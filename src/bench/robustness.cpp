@@ -81,11 +81,8 @@ void RobustnessTable(const RobustnessParams& params, std::ostream& out, Progress
           run.max = f.max_error;
           run.clearance = f.min_clearance;
           run.estimate = f.estimate_rms_error;
-          run.why = ToString(f.status);
-          if (!f.obstacle.empty()) run.why += " with " + f.obstacle;
-        } else {
-          run.why = ToString(result.status);
         }
+        run.why = Outcome(result);
         if (csv) {
           csv << name << "," << speed << "," << seed << "," << run.why << "," << run.rms << ","
               << run.max << "," << run.clearance << "," << run.estimate << "\n";

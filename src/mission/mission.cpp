@@ -24,6 +24,13 @@ const char* ToString(MissionStatus status) {
   return "?";
 }
 
+std::string Outcome(const MissionResult& result) {
+  if (!result.flown) return ToString(result.status);
+  std::string why = ToString(result.flight.status);
+  if (!result.flight.obstacle.empty()) why += " with " + result.flight.obstacle;
+  return why;
+}
+
 namespace {
 
 // The trajectory's points every 0.1 s and the vehicle's resting start: what the route of a city
@@ -113,6 +120,19 @@ void AddReplanner(const FlightSetup& setup, const PlanOutcome& plan,
   };
 }
 
+// What the replanner found: its replans, when and how far away each box was first seen, the
+// occupancy map.
+void TakeDiscovery(const Replanner& replanner, MissionResult* result) {
+  result->replans = replanner.events();
+  result->revealed_at = replanner.revealed_at();
+  result->revealed_distance = replanner.revealed_distance();
+  if (replanner.occupancy()) {
+    result->occupancy = MissionResult::Occupancy{replanner.occupancy(), replanner.cost()};
+  }
+  result->unknown_boxes = replanner.unknown_count();
+  result->revealed_boxes = replanner.revealed_count();
+}
+
 }  // namespace
 
 MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
@@ -181,19 +201,7 @@ MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
   result.flight_wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   result.flown = true;
-  if (replanner) {
-    result.replans = replanner->events();
-    result.revealed_at = replanner->revealed_at();
-    result.revealed_distance = replanner->revealed_distance();
-    if (const OccupancyGrid* grid = replanner->occupancy()) {
-      result.occupancy = MissionResult::Occupancy{grid->occupied_count(),       grid->free_count(),
-                                                  grid->cell_count(),           grid->resolution(),
-                                                  grid->OccupiedBoxes(),        replanner->cost(),
-                                                  replanner->shared_occupancy()};
-    }
-    result.unknown_boxes = replanner->unknown_count();
-    result.revealed_boxes = replanner->revealed_count();
-  }
+  if (replanner) TakeDiscovery(*replanner, &result);
   result.status = result.flight.status == FlightStatus::kReachedGoal ? MissionStatus::kReachedGoal
                                                                      : MissionStatus::kFlightFailed;
   for (MissionObserver* observer : parts.observers) observer->OnFlightEnd(*sim, result.flight);

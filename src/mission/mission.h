@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "control/controller.h"
@@ -43,6 +44,11 @@ class MissionObserver {
 enum class MissionStatus { kReachedGoal, kNoPath, kNoTrajectory, kFlightFailed };
 const char* ToString(MissionStatus status);
 
+struct MissionResult;
+// How a run ended, in words: the flight's status and the obstacle it hit ("collision with
+// block_3"), or the mission's status when it did not fly ("no path").
+std::string Outcome(const MissionResult& result);
+
 struct MissionResult {
   MissionStatus status = MissionStatus::kNoPath;
   PlanOutcome plan;
@@ -55,13 +61,11 @@ struct MissionResult {
   std::vector<double> revealed_distance;  // [m] from the sensor at that moment (< 0: never)
   int unknown_boxes = 0;
   int revealed_boxes = 0;
-  // with a depth camera: the occupancy map at the end of the flight
+  // with a depth camera: the occupancy map at the end of the flight, and where the camera's
+  // time went
   struct Occupancy {
-    long occupied = 0, free = 0, cells = 0;  // cells
-    double resolution = 0.0;                 // [m]
-    std::vector<Aabb> boxes;                 // the occupied cells, merged
-    SensingCost cost;                        // where the camera's time went
     std::shared_ptr<const OccupancyGrid> grid;
+    SensingCost cost;
   };
   std::optional<Occupancy> occupancy;
 };

@@ -141,8 +141,7 @@ class Replanner {
   // camera, the nearest of the first frame's points on it; else the nearest point of the box
   const std::vector<double>& revealed_distance() const { return revealed_distance_; }
   // kDepth: the occupancy map (nothing for the other kinds)
-  const OccupancyGrid* occupancy() const { return grid_.get(); }
-  std::shared_ptr<const OccupancyGrid> shared_occupancy() const { return grid_; }
+  std::shared_ptr<const OccupancyGrid> occupancy() const { return grid_; }
   const SensingCost& cost() const { return cost_; }
   int unknown_count() const;
   int revealed_count() const;

@@ -39,6 +39,52 @@ std::string TrackingNote(const FlightSetup& setup, const FlightResult& flight) {
          " m/s^2) ask more than it can follow";
 }
 
+namespace {
+
+// Obstacles found in flight: how many, every replan, when and how far away each box was first
+// seen, and the depth camera's occupancy map.
+void AddDiscovery(const FlightSetup& setup, const MissionResult& result, JsonObject* summary) {
+  summary->Add("unknown_boxes", result.unknown_boxes).Add("revealed_boxes", result.revealed_boxes);
+  std::vector<JsonObject> replans;
+  for (const ReplanEvent& e : result.replans) {
+    JsonObject r;
+    r.Add("t_s", e.t)
+        .Add("trigger", e.trigger)
+        .Add("outcome", e.outcome)
+        .Add("planning_time_s", e.planning_time)
+        .Add("solve_time_s", e.solve_time)
+        .Add("latency_s", e.latency)
+        .Add("path_length_m", e.path_length)
+        .Add("time_capped", e.time_capped);
+    replans.push_back(r);
+  }
+  summary->Add("replans", replans);
+  std::vector<JsonObject> revealed;
+  for (size_t i = 0; i < result.revealed_at.size() && i < setup.map.boxes.size(); ++i) {
+    if (result.revealed_at[i] < 0) continue;
+    JsonObject r;
+    r.Add("box", setup.map.boxes[i].name).Add("t_s", result.revealed_at[i]);
+    if (i < result.revealed_distance.size()) r.Add("distance_m", result.revealed_distance[i]);
+    revealed.push_back(r);
+  }
+  summary->Add("revealed", revealed);
+  if (!result.occupancy) return;
+  const OccupancyGrid& grid = *result.occupancy->grid;
+  const SensingCost& cost = result.occupancy->cost;
+  JsonObject map;
+  map.Add("resolution_m", grid.resolution())
+      .Add("cells", static_cast<long long>(grid.cell_count()))
+      .Add("occupied_cells", static_cast<long long>(grid.occupied_count()))
+      .Add("free_cells", static_cast<long long>(grid.free_count()))
+      .Add("depth_frames", cost.frames)
+      .Add("ray_cast_s", cost.capture)
+      .Add("fusion_s", cost.fusion)
+      .Add("planner_world_s", cost.rebuild);
+  summary->Add("occupancy", map);
+}
+
+}  // namespace
+
 JsonObject RunSummary(const FlightSetup& setup, const MissionResult& result,
                       const OutputCounts& counts) {
   const PlanOutcome& plan = result.plan;
@@ -130,47 +176,7 @@ JsonObject RunSummary(const FlightSetup& setup, const MissionResult& result,
       summary.Add("goals", goals).Add("stop_at_goals", setup.stop_at_goals);
     }
   }
-  if (setup.HasUnknown()) {
-    // obstacles found in flight: how many, and every replan
-    summary.Add("unknown_boxes", result.unknown_boxes).Add("revealed_boxes", result.revealed_boxes);
-    std::vector<JsonObject> replans;
-    for (const ReplanEvent& e : result.replans) {
-      JsonObject r;
-      r.Add("t_s", e.t)
-          .Add("trigger", e.trigger)
-          .Add("outcome", e.outcome)
-          .Add("planning_time_s", e.planning_time)
-          .Add("solve_time_s", e.solve_time)
-          .Add("latency_s", e.latency)
-          .Add("path_length_m", e.path_length)
-          .Add("time_capped", e.time_capped);
-      replans.push_back(r);
-    }
-    summary.Add("replans", replans);
-    // when and how far away each box was first seen
-    std::vector<JsonObject> revealed;
-    for (size_t i = 0; i < result.revealed_at.size() && i < setup.map.boxes.size(); ++i) {
-      if (result.revealed_at[i] < 0) continue;
-      JsonObject r;
-      r.Add("box", setup.map.boxes[i].name).Add("t_s", result.revealed_at[i]);
-      if (i < result.revealed_distance.size()) r.Add("distance_m", result.revealed_distance[i]);
-      revealed.push_back(r);
-    }
-    summary.Add("revealed", revealed);
-    if (result.occupancy) {
-      const MissionResult::Occupancy& o = *result.occupancy;
-      JsonObject map;
-      map.Add("resolution_m", o.resolution)
-          .Add("cells", static_cast<long long>(o.cells))
-          .Add("occupied_cells", static_cast<long long>(o.occupied))
-          .Add("free_cells", static_cast<long long>(o.free))
-          .Add("depth_frames", o.cost.frames)
-          .Add("ray_cast_s", o.cost.capture)
-          .Add("fusion_s", o.cost.fusion)
-          .Add("planner_world_s", o.cost.rebuild);
-      summary.Add("occupancy", map);
-    }
-  }
+  if (setup.HasUnknown()) AddDiscovery(setup, result, &summary);
   // the world it flew in: what was on
   JsonObject wind;
   AddPoint(&wind, "mean_mps", setup.wind.mean);

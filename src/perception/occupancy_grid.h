@@ -1,8 +1,9 @@
 // An occupancy map built in flight: a dense voxel grid over the map's bounds, each cell unknown
 // until a depth ray passes through it (free) or ends in it (occupied), with OctoMap's log-odds
 // update and clamping. A dense grid, not OctoMap's octree: our maps are bounded, so a grid gives
-// O(1) cell access and a ray walk without tree descent, and nothing to link (measured in the
-// navigation benchmark: fusion is a few percent of a flight).
+// O(1) cell access and a ray walk without tree descent, and nothing to link. Fusion walks every
+// pixel's ray: at 160 x 120 px, 25 Hz and 5 m it is about half of a forest flight's wall time
+// (the navigation benchmark), the largest share.
 #pragma once
 
 #include <cstdint>

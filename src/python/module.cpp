@@ -519,17 +519,18 @@ void AddMission(const MissionResult& mission, py::dict* result) {
   r["revealed_distance"] = mission.revealed_distance;
   if (mission.occupancy) {
     // the depth camera's occupancy map at the end: its size and its occupied cells as boxes
-    const MissionResult::Occupancy& o = *mission.occupancy;
+    const OccupancyGrid& grid = *mission.occupancy->grid;
+    const std::vector<Aabb> occupied = grid.OccupiedBoxes();
     py::dict map;
-    map["resolution"] = o.resolution;
-    map["cells"] = o.cells;
-    map["occupied"] = o.occupied;
-    map["free"] = o.free;
-    py::array_t<double> boxes({static_cast<py::ssize_t>(o.boxes.size()), py::ssize_t{6}});
-    for (size_t i = 0; i < o.boxes.size(); ++i) {
+    map["resolution"] = grid.resolution();
+    map["cells"] = grid.cell_count();
+    map["occupied"] = grid.occupied_count();
+    map["free"] = grid.free_count();
+    py::array_t<double> boxes({static_cast<py::ssize_t>(occupied.size()), py::ssize_t{6}});
+    for (size_t i = 0; i < occupied.size(); ++i) {
       for (int k = 0; k < 3; ++k) {
-        boxes.mutable_at(static_cast<py::ssize_t>(i), k) = o.boxes[i].min[k];
-        boxes.mutable_at(static_cast<py::ssize_t>(i), k + 3) = o.boxes[i].max[k];
+        boxes.mutable_at(static_cast<py::ssize_t>(i), k) = occupied[i].min[k];
+        boxes.mutable_at(static_cast<py::ssize_t>(i), k + 3) = occupied[i].max[k];
       }
     }
     map["occupied_boxes"] = boxes;

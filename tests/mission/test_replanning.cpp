@@ -218,11 +218,11 @@ TEST_CASE("depth: the wall is found by its face, mapped, flown around, the same 
   CHECK(first.revealed_distance[0] > 0.0);
   CHECK(first.revealed_distance[0] <= 5.0);
   REQUIRE(first.occupancy.has_value());
-  CHECK(first.occupancy->occupied > 100);
+  CHECK(first.occupancy->grid->occupied_count() > 100);
   const MissionResult again = RunMission(DepthRoom(3), MissionParts());
   CHECK(again.revealed_at == first.revealed_at);
   CHECK(again.flight.time == first.flight.time);
-  CHECK(again.occupancy->occupied == first.occupancy->occupied);
+  CHECK(again.occupancy->grid->occupied_count() == first.occupancy->grid->occupied_count());
 }
 
 TEST_CASE("depth: a box hidden behind another is not known until it is in the line of sight") {

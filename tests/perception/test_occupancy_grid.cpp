@@ -1,5 +1,6 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "perception/occupancy_grid.h"
@@ -79,4 +80,27 @@ TEST_CASE("occupancy: a resolution too fine for the bounds is refused naming the
   params.resolution = 0.001;
   CHECK_THROWS_WITH_AS(OccupancyGrid(Aabb{Vec3(0, 0, 0), Vec3(100, 100, 10)}, params),
                        doctest::Contains("sensing.resolution"), std::invalid_argument);
+}
+
+TEST_CASE(
+    "occupancy: with columns, a wall seen in a band is taken whole up and down through unknown "
+    "cells") {
+  Room room;
+  room.params.fov_vertical = 0.35;  // 20 deg: a band of the wall
+  OccupancyGrid grid(room.bounds, OccupancyParams());
+  grid.Insert(room.Frame(), room.params.range, {});
+  REQUIRE(grid.occupied_count() > 0);
+  double low = 3.0, high = 0.0, low_columns = 3.0, high_columns = 0.0;
+  for (const Aabb& b : grid.OccupiedBoxes()) {
+    low = std::min(low, b.min.z());
+    high = std::max(high, b.max.z());
+  }
+  for (const Aabb& b : grid.OccupiedBoxes(true)) {
+    low_columns = std::min(low_columns, b.min.z());
+    high_columns = std::max(high_columns, b.max.z());
+  }
+  CHECK(low > 0.5);  // the band only
+  CHECK(high < 2.5);
+  CHECK(low_columns == doctest::Approx(0.0));  // down to the floor and up to the top
+  CHECK(high_columns == doctest::Approx(3.0));
 }
