@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -100,46 +101,95 @@ DepthImage DepthCamera::Capture(const State& body, const std::vector<Aabb>& boxe
   const size_t pixels = static_cast<size_t>(params_.width) * static_cast<size_t>(params_.height);
   image.depth.assign(pixels, 0.0f);
   image.hit.assign(pixels, kNoReturn);
-  // only the boxes within range can be seen
+  // per pixel: its ray in the world and the nearest surface on it, the floor first
   const Vec3& o = image.origin_W;
-  near_.clear();
-  for (size_t i = 0; i < boxes.size(); ++i) {
-    if ((o.cwiseMax(boxes[i].min).cwiseMin(boxes[i].max) - o).norm() <= params_.range) {
-      near_.push_back(i);
-    }
-  }
-  std::normal_distribution<double> normal(0.0, 1.0);
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  rays_.resize(pixels);
+  nearest_.resize(pixels);
   for (int v = 0; v < params_.height; ++v) {
     for (int u = 0; u < params_.width; ++u) {
-      const Vec3 ray_C = image.RayC(u, v);
-      const Vec3 d = image.R_WC * ray_C;
-      double nearest = std::min(params_.range, RayToFloor(o, d, bounds));
-      int hit = nearest < params_.range ? kFloor : kNoReturn;
-      for (const size_t i : near_) {
-        const double t = RayToBox(o, d, boxes[i]);
-        if (t < nearest) {
-          nearest = t;
-          hit = static_cast<int>(i);
+      const size_t k = static_cast<size_t>(v * params_.width + u);
+      rays_[k] = image.R_WC * image.RayC(u, v);
+      nearest_[k] = std::min(params_.range, RayToFloor(o, rays_[k], bounds));
+      if (nearest_[k] < params_.range) image.hit[k] = kFloor;
+    }
+  }
+  // then every box within range, in the order of the map (the first of equals wins), over the
+  // pixels its projection covers
+  for (size_t i = 0; i < boxes.size(); ++i) {
+    if ((o.cwiseMax(boxes[i].min).cwiseMin(boxes[i].max) - o).norm() > params_.range) continue;
+    const std::optional<PixelRect> rect = Footprint(image, boxes[i]);
+    if (!rect) continue;
+    for (int v = rect->v0; v <= rect->v1; ++v) {
+      for (int u = rect->u0; u <= rect->u1; ++u) {
+        const size_t k = static_cast<size_t>(v * params_.width + u);
+        const double t = RayToBox(o, rays_[k], boxes[i]);
+        if (t < nearest_[k]) {
+          nearest_[k] = t;
+          image.hit[k] = static_cast<int>(i);
         }
       }
-      if (hit == kNoReturn) continue;
-      const size_t k =
-          static_cast<size_t>(v) * static_cast<size_t>(params_.width) + static_cast<size_t>(u);
-      double depth = nearest * ray_C.z();
+    }
+  }
+  AddNoise(&image);
+  return image;
+}
+
+std::optional<DepthCamera::PixelRect> DepthCamera::Footprint(const DepthImage& image,
+                                                             const Aabb& box) const {
+  // a box wholly in front of the camera projects inside the rectangle of its corners' pixels;
+  // one that reaches behind the camera may cover any pixel; one wholly behind it, none
+  double u_lo = kInf, u_hi = -kInf, v_lo = kInf, v_hi = -kInf;
+  int behind = 0;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Vec3 c((corner & 1) ? box.max.x() : box.min.x(), (corner & 2) ? box.max.y() : box.min.y(),
+                 (corner & 4) ? box.max.z() : box.min.z());
+    const Vec3 p = image.R_WC.transpose() * (c - image.origin_W);
+    if (p.z() <= 1e-9) {
+      ++behind;
+      continue;
+    }
+    // the pixel whose centre's ray passes through p: u + 0.5 - width / 2 = fx x / z
+    const double u = image.fx * p.x() / p.z() + 0.5 * image.width - 0.5;
+    const double v = image.fy * p.y() / p.z() + 0.5 * image.height - 0.5;
+    u_lo = std::min(u_lo, u), u_hi = std::max(u_hi, u);
+    v_lo = std::min(v_lo, v), v_hi = std::max(v_hi, v);
+  }
+  if (behind == 8) return std::nullopt;
+  PixelRect rect{0, 0, image.width - 1, image.height - 1};
+  if (behind > 0) return rect;
+  // a pixel's centre ray meets the box only when it lies within the corners' hull; one pixel
+  // more on each side against rounding
+  rect.u0 = static_cast<int>(std::max(0.0, std::floor(u_lo) - 1.0));
+  rect.v0 = static_cast<int>(std::max(0.0, std::floor(v_lo) - 1.0));
+  rect.u1 = static_cast<int>(std::min(image.width - 1.0, std::ceil(u_hi) + 1.0));
+  rect.v1 = static_cast<int>(std::min(image.height - 1.0, std::ceil(v_hi) + 1.0));
+  if (rect.u0 > rect.u1 || rect.v0 > rect.v1) return std::nullopt;
+  return rect;
+}
+
+void DepthCamera::AddNoise(DepthImage* image) {
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  for (int v = 0; v < image->height; ++v) {
+    for (int u = 0; u < image->width; ++u) {
+      const size_t k = static_cast<size_t>(v * image->width + u);
+      if (image->hit[k] == kNoReturn) continue;
+      const double cos_axis = image->RayC(u, v).z();
+      double depth = nearest_[k] * cos_axis;
       // drawn for every returning pixel, so that a frame's draws do not depend on the noise
       const double error = normal(rng_), drop = uniform(rng_);
       if (drop < params_.dropout) {
-        image.hit[k] = kDropped;
+        image->hit[k] = kDropped;
         continue;
       }
       depth += params_.noise * depth * depth * error;
-      if (!(depth > 0.0) || depth / ray_C.z() > params_.range) continue;
-      image.depth[k] = static_cast<float>(depth);
-      image.hit[k] = hit;
+      if (!(depth > 0.0) || depth / cos_axis > params_.range) {
+        image->hit[k] = kNoReturn;
+        continue;
+      }
+      image->depth[k] = static_cast<float>(depth);
     }
   }
-  return image;
 }
 
 }  // namespace aerobox

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -70,9 +71,18 @@ class DepthCamera {
   const DepthCameraParams& params() const { return params_; }
 
  private:
+  struct PixelRect {
+    int u0, v0, u1, v1;  // inclusive
+  };
+  // The pixels whose rays may meet `box` (none: it lies wholly behind the camera).
+  std::optional<PixelRect> Footprint(const DepthImage& image, const Aabb& box) const;
+  // Depth along the optical axis from the rays' hits, then noise and dropouts.
+  void AddNoise(DepthImage* image);
+
   DepthCameraParams params_;
   std::mt19937_64 rng_;
-  std::vector<size_t> near_;  // the boxes within range of this frame's camera
+  std::vector<Vec3> rays_;       // this frame's rays in the world, per pixel
+  std::vector<double> nearest_;  // [m] along each ray to what it hit (range: nothing)
 };
 
 }  // namespace aerobox

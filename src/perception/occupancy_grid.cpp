@@ -146,15 +146,30 @@ int OccupancyGrid::Insert(const DepthImage& image, double range, const std::vect
       if (CellOf(end(u, v), &ix, &iy, &iz)) Update(Index(ix, iy, iz), kHit);
     }
   }
+  // then the free space before each ray's end: one ray per end cell (OctoMap's `discretize`),
+  // the first pixel's, so that the many pixels on a near surface walk the same cells once
+  ends_.clear();
   for (int v = 0; v < image.height; ++v) {
     for (int u = 0; u < image.width; ++u) {
       const size_t k = static_cast<size_t>(v * image.width + u);
-      if (image.depth[k] > 0.0f) {
-        Clear(image.origin_W, end(u, v), false);
-      } else if (image.hit[k] == kNoReturn) {
-        Clear(image.origin_W, image.origin_W + image.R_WC * image.RayC(u, v) * range, true);
-      }
+      const bool surface = image.depth[k] > 0.0f;
+      if (!surface && image.hit[k] != kNoReturn) continue;  // dropped: says nothing
+      const Vec3 p =
+          surface ? end(u, v) : Vec3(image.origin_W + image.R_WC * image.RayC(u, v) * range);
+      // an end beyond the grid by more than a cell is its own (rays to it differ too much)
+      int ix, iy, iz;
+      CellOf(p, &ix, &iy, &iz);  // clamped to the grid
+      const bool near_grid = (p.array() >= bounds_.min.array() - resolution_).all() &&
+                             (p.array() <= bounds_.max.array() + resolution_).all();
+      const long cell = near_grid ? Index(ix, iy, iz) : -1 - static_cast<long>(k);
+      ends_.push_back({2 * cell + (surface ? 0 : 1), surface, p});
     }
+  }
+  std::stable_sort(ends_.begin(), ends_.end(),
+                   [](const RayEnd& a, const RayEnd& b) { return a.key < b.key; });
+  for (size_t i = 0; i < ends_.size(); ++i) {
+    if (i > 0 && ends_[i].key == ends_[i - 1].key) continue;
+    Clear(image.origin_W, ends_[i].p, !ends_[i].surface);
   }
   return static_cast<int>(std::max(0L, occupied_ - before));
 }

@@ -71,6 +71,12 @@ class OccupancyGrid {
   std::vector<std::uint32_t> stamp_;    // the frame that last changed the cell
   std::uint32_t frame_ = 0;
   std::set<long> occupied_cells_;  // sorted: OccupiedBoxes merges runs of it
+  struct RayEnd {
+    long key;      // 2 * the end's cell (negative: the ray's own), + 1 when it hit nothing
+    bool surface;  // it ended on a surface (else at the range)
+    Vec3 p;        // [m]
+  };
+  std::vector<RayEnd> ends_;  // this frame's rays to walk
   long occupied_ = 0, free_ = 0;
 };
 

@@ -54,8 +54,9 @@ TEST_CASE("depth camera: every pixel's depth is what MuJoCo's mj_ray sees, withi
   params.pitch = -0.2;
   DepthCamera camera(params, 1);
   int boxes = 0, floor = 0, nothing = 0;
-  for (const State& s :
-       {At(Vec3(1, 3, 1.5), 0.0), At(Vec3(2, 2, 2.5), 0.3, 0.2), At(Vec3(6, 3, 1.0), 0.1, -0.1)}) {
+  // the last pose stands beside the near box, which reaches behind the camera
+  for (const State& s : {At(Vec3(1, 3, 1.5), 0.0), At(Vec3(2, 2, 2.5), 0.3, 0.2),
+                         At(Vec3(6, 3, 1.0), 0.1, -0.1), At(Vec3(4.5, 3.4, 1.2), -0.6)}) {
     const DepthImage image = camera.Capture(s, Extents(map), map.bounds);
     for (int v = 0; v < image.height; ++v) {
       for (int u = 0; u < image.width; ++u) {
