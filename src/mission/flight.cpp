@@ -28,6 +28,9 @@ void FlightParams::Describe(Archive& a) {
       &flyaway_distance, 0.01, 1e12);
   a.Enum({"yaw", "", "hold the start's yaw, or turn along the travel"}, &face_travel,
          {{false, "hold"}, {true, "travel"}});
+  a.Number({"look_ahead", "m", "yaw \"travel\": turns toward the reference this far ahead"},
+           &look_ahead, 0.05, 100);
+  a.Degrees({"yaw_rate", "deg/s", "yaw \"travel\": turns at most this fast"}, &yaw_rate, 1, 3600);
 }
 
 void FlightParams::Validate() const { ValidateFields(*this, "flight"); }
@@ -102,7 +105,7 @@ class FlightRun {
         goal_tolerance_(params.goal_tolerance),
         goal_speed_(params.goal_speed),
         divider_(StepsPerPeriod(loop.control_rate, world_->step(), "the controller's rate")),
-        setpoints_(reference, params.face_travel, YawOf(world_->Truth())) {
+        setpoints_(reference, params, YawOf(world_->Truth())) {
     result_.control_rate = loop.control_rate;
     world_->sim().TakeNewWarnings();  // what loading and placing raised is not the flight's
     t0_ = world_->time();

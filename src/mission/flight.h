@@ -27,7 +27,12 @@ struct FlightParams {
   double goal_tolerance = 0.10;   // [m] "reached": this close to the goal ...
   double goal_speed = 0.10;       // [m/s] ... and this slow
   double flyaway_distance = 2.0;  // [m] from the setpoint: the flight is lost
-  bool face_travel = false;       // yaw along the horizontal velocity; otherwise hold the start's
+  bool face_travel = false;       // yaw along the travel; otherwise hold the start's
+  // With face_travel: the yaw turns toward the reference this far ahead [m] (a camera along
+  // body x then sees a turn before the vehicle takes it), at most this fast [rad/s] (a yaw that
+  // follows the velocity of a slow, tight turn would spin the vehicle and saturate its rotors).
+  double look_ahead = 1.0;  // [m]
+  double yaw_rate = 2.0943951023931953;  // [rad/s] 120 deg/s
 
   void Describe(Archive& a);  // [flight] (common/schema.h)
   // Throws std::invalid_argument naming the field.

@@ -40,8 +40,13 @@ double Takeoff::ReferenceTime(double t, const State& state) {
   return lifting_ ? 0.0 : t - time_;
 }
 
-Setpoints::Setpoints(const Reference& reference, bool face_travel, double initial_yaw)
-    : current_(reference), face_travel_(face_travel), yaw_(initial_yaw) {}
+Setpoints::Setpoints(const Reference& reference, const FlightParams& params, double initial_yaw)
+    : current_(reference),
+      face_travel_(params.face_travel),
+      look_ahead_(params.look_ahead),
+      yaw_rate_(params.yaw_rate),
+      yaw_(initial_yaw),
+      yaw_time_(0.0) {}
 
 FlatOutput Setpoints::At(double tr) {
   const double duration = current_.duration;
@@ -52,20 +57,37 @@ FlatOutput Setpoints::At(double tr) {
     setpoint.a_W = current_.evaluate(tr, kAcceleration);
     setpoint.j_W = current_.evaluate(tr, kJerk);
     setpoint.s_W = current_.evaluate(tr, kSnap);
-    const double speed_xy = setpoint.v_W.head<2>().norm();
     if (current_.heading) {
       std::tie(yaw_, setpoint.yaw_rate) = current_.heading(tr);
-    } else if (face_travel_ && speed_xy > 0.2) {
-      yaw_ = std::atan2(setpoint.v_W.y(), setpoint.v_W.x());
-      setpoint.yaw_rate =
-          (setpoint.v_W.x() * setpoint.a_W.y() - setpoint.v_W.y() * setpoint.a_W.x()) /
-          (speed_xy * speed_xy);
+    } else if (face_travel_) {
+      std::tie(yaw_, setpoint.yaw_rate) = AlongTravel(tr);
     }
   } else if (current_.heading) {
     yaw_ = current_.heading(duration).first;
   }
   setpoint.yaw = yaw_;
   return setpoint;
+}
+
+std::pair<double, double> Setpoints::AlongTravel(double tr) {
+  constexpr double kPi = 3.14159265358979323846;
+  constexpr double kStep = 0.02;     // [s] along the reference
+  constexpr double kHorizon = 3.0;   // [s] looked ahead at most
+  constexpr double kMinimum = 0.15;  // [m] nearer, the direction means nothing: the yaw holds
+  const double elapsed = std::max(0.0, tr - yaw_time_);
+  yaw_time_ = tr;
+  const Vec3 here = current_.evaluate(tr, kPosition);
+  Vec3 ahead = here;
+  for (double s = tr + kStep; s <= tr + kHorizon; s += kStep) {
+    ahead = current_.evaluate(std::min(s, current_.duration), kPosition);
+    if ((ahead - here).head<2>().norm() >= look_ahead_ || s >= current_.duration) break;
+  }
+  const Eigen::Vector2d toward = (ahead - here).head<2>();
+  if (toward.norm() < kMinimum) return {yaw_, 0.0};
+  const double turn = std::remainder(std::atan2(toward.y(), toward.x()) - yaw_, 2.0 * kPi);
+  const double step = std::clamp(turn, -yaw_rate_ * elapsed, yaw_rate_ * elapsed);
+  const double rate = elapsed > 0 ? step / elapsed : 0.0;
+  return {std::remainder(yaw_ + step, 2.0 * kPi), rate};
 }
 
 Air::Air(const FlightLoop& loop, const Vec3& p_W)

@@ -47,11 +47,12 @@ class Takeoff {
 };
 
 // The setpoints along the reference flown: its flat outputs up to snap while it runs, its end
-// held after; the yaw from the reference's heading, along the travel, or held. A replacement
-// reference (replanning) is flown from then on, on the same clock.
+// held after; the yaw from the reference's heading, along the travel (FlightParams::look_ahead,
+// yaw_rate), or held. A replacement reference (replanning) is flown from then on, on the same
+// clock.
 class Setpoints {
  public:
-  Setpoints(const Reference& reference, bool face_travel, double initial_yaw);
+  Setpoints(const Reference& reference, const FlightParams& params, double initial_yaw);
 
   void Replace(const Reference& next) { current_ = next; }
   const Reference& current() const { return current_; }
@@ -60,9 +61,16 @@ class Setpoints {
   FlatOutput At(double tr);
 
  private:
+  // The yaw along the travel at `tr`: toward the reference look_ahead ahead, turned from the
+  // last at most yaw_rate since it was set; and the rate it turns at.
+  std::pair<double, double> AlongTravel(double tr);
+
   Reference current_;
   bool face_travel_;
-  double yaw_;  // [rad] the last one set: held when nothing sets another
+  double look_ahead_;  // [m]
+  double yaw_rate_;    // [rad/s]
+  double yaw_;         // [rad] the last one set: held when nothing sets another
+  double yaw_time_;    // [s] of the reference, when yaw_ was set
 };
 
 // The air: the wind where the vehicle is (mean, gusts, turbulence) and the drag it causes,

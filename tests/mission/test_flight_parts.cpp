@@ -2,6 +2,8 @@
 // ones, and the built-in ones can be left out, without a change to the loop.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 
 #include "flight_test_util.h"
@@ -113,4 +115,49 @@ TEST_CASE("a flight without a world or a take-off is refused") {
 }
 
 }  // namespace
+}  // namespace aerobox
+
+namespace aerobox {
+namespace {
+
+// A slow, tight circle (radius 0.15 m at 0.3 m/s: its velocity turns at 2 rad/s), then a
+// straight run along +y.
+Reference TightTurnThenRun() {
+  return testing::FromFunction(8.0, [](double t) {
+    constexpr double kRadius = 0.15, kRate = 2.0;  // [m], [rad/s]
+    if (t < 3.0) {
+      return Vec3(kRadius * std::cos(kRate * t), kRadius * std::sin(kRate * t), 1.0);
+    }
+    const Vec3 end(kRadius * std::cos(kRate * 3.0), kRadius * std::sin(kRate * 3.0), 1.0);
+    return Vec3(end + Vec3(0, 1.0 * (t - 3.0), 0));
+  });
+}
+
+}  // namespace
+
+TEST_CASE("yaw along the travel: turns at most yaw_rate, toward the reference look_ahead ahead") {
+  FlightParams params;
+  params.face_travel = true;
+  params.yaw_rate = 1.0;  // [rad/s]
+  Setpoints setpoints(TightTurnThenRun(), params, 0.0);
+  constexpr double kStep = 0.004;  // [s]
+  double previous = 0.0, fastest = 0.0;
+  for (double t = 0.0; t < 3.0; t += kStep) {
+    const FlatOutput s = setpoints.At(t);
+    // a yaw along the velocity would turn at 2 rad/s here (and spin with any faster circle)
+    fastest = std::max(fastest, std::abs(std::remainder(s.yaw - previous, 2 * M_PI)) / kStep);
+    CHECK(std::abs(s.yaw_rate) <= params.yaw_rate + 1e-9);
+    previous = s.yaw;
+  }
+  CHECK(fastest <= params.yaw_rate + 1e-6);
+  // on the straight run, the yaw settles along +y, the way the reference goes 1 m ahead
+  FlatOutput s;
+  for (double t = 3.0; t < 7.0; t += kStep) s = setpoints.At(t);
+  CHECK(std::abs(std::remainder(s.yaw - M_PI / 2, 2 * M_PI)) < 1e-6);
+  // held: the yaw stays where it was
+  params.face_travel = false;
+  Setpoints held(TightTurnThenRun(), params, 0.3);
+  CHECK(held.At(5.0).yaw == doctest::Approx(0.3));
+}
+
 }  // namespace aerobox
