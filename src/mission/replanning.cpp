@@ -443,32 +443,26 @@ std::optional<Reference> Replanner::Replan(double t, double tr, int goals_reache
   };
   // unknown space within the stopping distance: brake, without searching
   const bool unknown_ahead = trigger == kUnknownAhead;
-  const Clock::time_point planning = Clock::now();
-  const std::optional<std::vector<Vec3>> path =
-      unknown_ahead ? std::nullopt : FindPath(start.p_W, goals_reached, &event);
-  event.planning_time = Seconds(planning);
-  if (path) {
-    event.path_length = PathLength(*path);
-    const Clock::time_point solving = Clock::now();
-    const TrajectoryResult next = Continue(start, *path);
-    event.solve_time = Seconds(solving);
-    if (next.status == TrajectoryStatus::kSolved) {
-      Reference spliced = Splice(current, th, next.trajectory);
-      // braked before unknown space: go on only once the vehicle can stop before it
-      if (grid_ && trigger == kRetry && UnknownAhead(spliced, th, start.v_W.norm())) {
-        return done(std::nullopt, "braked, unknown ahead");
-      }
-      braking_ = false;
-      attempts_ = 0;
-      path_ = *path;
-      ReplacedBy(next.trajectory, &event);
-      return done(std::move(spliced), trigger == kRetry ? "replanned after braking" : "replanned");
+  std::optional<Continuation> next;
+  if (!unknown_ahead) next = Continue(start, goals_reached, &event);
+  if (next) {
+    Reference spliced = Splice(current, th, next->trajectory);
+    // braked before unknown space: go on only once the vehicle can stop before it
+    if (grid_ && trigger == kRetry && UnknownAhead(spliced, th, start.v_W.norm())) {
+      return done(std::nullopt, "braked, unknown ahead");
     }
+    braking_ = false;
+    attempts_ = 0;
+    path_ = next->path;
+    ReplacedBy(next->trajectory, &event);
+    return done(std::move(spliced), trigger == kRetry ? "replanned after braking" : "replanned");
   }
   if (!unknown_ahead) ++attempts_;
   if (braking_) return done(std::nullopt, "braked, still searching");
   braking_ = true;
-  const std::string why = unknown_ahead ? "unknown ahead" : path ? "no trajectory" : "no path";
+  const std::string why = unknown_ahead             ? "unknown ahead"
+                          : event.path_length > 0.0 ? "no trajectory"
+                                                    : "no path";
   if (start.v_W.norm() < 1e-3) return done(std::nullopt, why);
   const std::optional<PiecewiseTrajectory> brake = Brake(start);
   if (!brake) return done(std::nullopt, why + ", and no room to brake");
@@ -486,7 +480,8 @@ void Replanner::ReplacedBy(const PiecewiseTrajectory& trajectory, ReplanEvent* e
 std::optional<PiecewiseTrajectory> Replanner::Brake(const StartState& start) const {
   // to rest along the current direction of travel, at the braking distance (longer while the
   // vehicle still accelerates forward); when that is infeasible further, and when the known
-  // world has no room for it nearer
+  // world has no room for it nearer; when the known world has no room for any, the stop at the
+  // braking distance all the same: stopping short of what was just seen beats flying on into it
   const double speed = start.v_W.norm();
   const Vec3 direction = start.v_W / speed;
   const double decel = BrakingDeceleration(params_.max_tilt);
@@ -497,6 +492,45 @@ std::optional<PiecewiseTrajectory> Replanner::Brake(const StartState& start) con
     if (!trajectory_world_->IsSegmentFree(start.p_W, stop)) continue;
     TrajectoryResult brake = Continue(start, {start.p_W, stop});
     if (brake.status == TrajectoryStatus::kSolved) return std::move(brake.trajectory);
+  }
+  const TrajectoryWorld anywhere{[](const Aabb&) { return true; },
+                                 [](const Vec3&, const Vec3&) { return true; }};
+  for (const double factor : {1.0, 1.6, 2.5}) {
+    const std::vector<Vec3> path = {start.p_W,
+                                    start.p_W + std::max(0.05, factor * distance) * direction};
+    if (std::optional<TrajectoryResult> brake = minsnap_->Continue(start, path, anywhere)) {
+      if (brake->status == TrajectoryStatus::kSolved) return std::move(brake->trajectory);
+    }
+  }
+  return std::nullopt;
+}
+
+std::optional<Replanner::Continuation> Replanner::Continue(const StartState& start,
+                                                           int goals_reached,
+                                                           ReplanEvent* event) const {
+  // a fast start needs room to turn: first the path from where braking along the travel would
+  // stop, reached straight on, when that is free; then the path from the start itself
+  std::vector<std::vector<Vec3>> heads = {{start.p_W}};
+  const double speed = start.v_W.norm();
+  if (speed > 0.5) {
+    const Vec3 lead = start.p_W + speed / (2 * BrakingDeceleration(params_.max_tilt)) * start.v_W;
+    if (planner_world_->IsSegmentFree(start.p_W, lead)) {
+      heads.insert(heads.begin(), {start.p_W, lead});
+    }
+  }
+  for (const std::vector<Vec3>& head : heads) {
+    const Clock::time_point planning = Clock::now();
+    std::optional<std::vector<Vec3>> path = FindPath(head.back(), goals_reached, event);
+    event->planning_time += Seconds(planning);
+    if (!path) continue;
+    path->insert(path->begin(), head.begin(), head.end() - 1);
+    event->path_length = PathLength(*path);
+    const Clock::time_point solving = Clock::now();
+    TrajectoryResult next = Continue(start, *path);
+    event->solve_time += Seconds(solving);
+    if (next.status == TrajectoryStatus::kSolved) {
+      return Continuation{std::move(*path), std::move(next.trajectory)};
+    }
   }
   return std::nullopt;
 }

@@ -161,7 +161,8 @@ class Replanner {
                                             ReplanEvent* event) const;
   // The vertex of the current path the local repair rejoins (its size: none).
   size_t Rejoin(const Vec3& start, int goals_reached) const;
-  // A stop along the direction of travel, when the known world has room for one.
+  // A stop along the direction of travel: one the known world has room for, or else the one at
+  // the braking distance regardless (nothing only when no trajectory reaches either).
   std::optional<PiecewiseTrajectory> Brake(const StartState& start) const;
   static void ReplacedBy(const PiecewiseTrajectory& trajectory, ReplanEvent* event);
   // One reading at `t`: the boxes it revealed first; true when what the planner avoids changed.
@@ -169,6 +170,14 @@ class Replanner {
   bool SenseDepth(double t, const State& state, std::vector<size_t>* newly);
   // The trajectory from `start` along `path`, through the seam.
   TrajectoryResult Continue(const StartState& start, const std::vector<Vec3>& path) const;
+  // A path from `start` through the goals still ahead and the trajectory along it (nothing when
+  // no path or no trajectory was found; `event` gets the times and the last path's length).
+  struct Continuation {
+    std::vector<Vec3> path;
+    PiecewiseTrajectory trajectory;
+  };
+  std::optional<Continuation> Continue(const StartState& start, int goals_reached,
+                                       ReplanEvent* event) const;
 
   Map map_;
   std::vector<bool> unknown_;

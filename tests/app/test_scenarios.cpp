@@ -133,6 +133,20 @@ TEST_CASE("scenario maze_unknown: walls found in flight, replanned around") {
   CHECK(flight.out.find("discovery") != std::string::npos);
 }
 
+// A forest of Fast-Planner's density, every pillar unknown, seen only by the depth camera: the
+// flight plans in the occupancy map it builds and arrives without contact, the same each time.
+// (The navigation benchmark reports how many forests of this density are crossed.)
+TEST_CASE("scenario depth_forest: pillars found by the depth camera, flown through, repeatable") {
+  const Flight flight = CheckSuccess(Scene("depth_forest"));
+  CHECK(testing::SummaryNumber(flight.summary, "unknown_boxes") == 150);
+  CHECK(testing::SummaryNumber(flight.summary, "revealed_boxes") >= 10);
+  CHECK(flight.summary["replans"].size() >= 1);
+  CHECK(flight.summary["occupancy"]["occupied_cells"].get<double>() > 1000);
+  const Flight again = Fly(Scene("depth_forest"));
+  CHECK(again.summary["flight_time_s"] == flight.summary["flight_time_s"]);
+  CHECK(again.summary["revealed"] == flight.summary["revealed"]);
+}
+
 TEST_CASE("scenario impossible: exit 3, no path") {
   const Flight flight = Fly(Scene("impossible"));
   CHECK(flight.code == kExitNoPath);

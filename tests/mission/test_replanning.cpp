@@ -253,3 +253,40 @@ TEST_CASE("depth: a box hidden behind another is not known until it is in the li
   CHECK(pillar_seen[1] > pillar_seen[0] + 1.0);
 }
 }  // namespace aerobox
+
+namespace aerobox {
+
+TEST_CASE("a vehicle whose every stop ahead is blocked still brakes rather than fly on") {
+  // a wall across the whole room, found 0.8 m ahead of a vehicle at 2 m/s: no path past it,
+  // and no stop along the travel that keeps the trajectory's clearance from it
+  Map map;
+  map.name = "closed";
+  map.bounds = {Vec3(0, 0, 0), Vec3(10, 4, 3)};
+  map.boxes.push_back({{Vec3(5, 0, 0), Vec3(5.3, 4, 3)}, Vec3(1, 0, 0), "wall", 1});
+  const Vec3 from(1, 2, 1.5), to(9, 2, 1.5);
+  Reference straight;
+  straight.duration = 4.0;
+  straight.evaluate = [from, to](double t, int derivative) -> Vec3 {
+    if (derivative == kPosition) return from + (to - from) * (t / 4.0);
+    if (derivative == kVelocity) return (to - from) / 4.0;
+    return Vec3::Zero();
+  };
+  SensingParams sensing;
+  sensing.range = 3.0;
+  GeneratorConfig generator;
+  Replanner replanner(map, {true}, CollisionParams{}, CollisionParams{Vec3(0.1, 0.1, 0.05), 0.05},
+                      PlannerConfig{}, generator, sensing, ReplanParams{}, {to}, {from, to}, 1);
+  State state;
+  state.p_W = straight.evaluate(1.6, kPosition);  // x = 4.2
+  state.v_W = straight.evaluate(1.6, kVelocity);
+  const std::optional<Reference> next = replanner.Update(1.6, 1.6, state, 0, straight);
+  REQUIRE(replanner.events().size() == 1);
+  CHECK(replanner.events()[0].outcome == "braking (no path)");
+  REQUIRE(next.has_value());
+  // the new reference comes to rest, not far beyond the braking distance
+  CHECK(next->evaluate(next->duration, kVelocity).norm() < 1e-6);
+  CHECK(next->evaluate(next->duration, kPosition).x() < 6.0);
+  CHECK(next->evaluate(next->duration, kPosition).x() > 4.2);
+}
+
+}  // namespace aerobox
