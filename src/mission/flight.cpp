@@ -210,6 +210,7 @@ class FlightRun {
         report_,
         static_cast<int>(result_.goal_times.size()),
         result_.replans,
+        loop_.map_size ? loop_.map_size() : OccupancySize{},
         world_->air().wind(),
         world_->air().wrench().force_W,
         sensing ? std::optional<EstimateSample>(sensing->Sample(state)) : std::nullopt};

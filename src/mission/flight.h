@@ -31,7 +31,7 @@ struct FlightParams {
   // With face_travel: the yaw turns toward the reference this far ahead [m] (a camera along
   // body x then sees a turn before the vehicle takes it), at most this fast [rad/s] (a yaw that
   // follows the velocity of a slow, tight turn would spin the vehicle and saturate its rotors).
-  double look_ahead = 1.0;  // [m]
+  double look_ahead = 1.0;               // [m]
   double yaw_rate = 2.0943951023931953;  // [rad/s] 120 deg/s
 
   void Describe(Archive& a);  // [flight] (common/schema.h)
@@ -52,6 +52,12 @@ enum class FlightStatus {
 };
 const char* ToString(FlightStatus status);
 
+// How many cells of an occupancy map built in flight are known.
+struct OccupancySize {
+  long occupied = 0;
+  long free = 0;
+};
+
 // One row of telemetry per control step (each Controller::Update).
 struct TelemetrySample {
   double t = 0.0;
@@ -65,6 +71,7 @@ struct TelemetrySample {
   std::vector<double> report;         // the controller's own columns (ReportColumns)
   int goal_index = 0;                 // a mission's goals reached so far (the next one's index)
   int replans = 0;                    // references replaced so far (FlightLoop::update_reference)
+  OccupancySize map;                  // the occupancy map's cells (FlightLoop::map_size)
   Vec3 wind_W = Vec3::Zero();         // the wind at the vehicle [m/s]
   Vec3 aero_force_W = Vec3::Zero();   // drag on the vehicle [N]
   // With sensors on: the estimate the controller flew on, its error and the readings; empty
@@ -168,6 +175,8 @@ struct FlightLoop {
   std::function<std::optional<Reference>(double t, double tr, const State& state, int goals_reached,
                                          const Reference& current)>
       update_reference;
+  // The occupancy map's size now, for telemetry (a depth camera's map); empty: none.
+  std::function<OccupancySize()> map_size;
   double ground_z = 0.0;  // [m] the floor's height, for the turbulence's scale lengths
   Completion completion;
   // Asked at each control step with the flight time [s] and the true state: true ends the flight

@@ -118,6 +118,12 @@ void AddReplanner(const FlightSetup& setup, const PlanOutcome& plan,
                                        const Reference& current) {
     return (*replanner)->Update(t, tr, state, reached, current);
   };
+  if (setup.sensing.kind == SensingParams::Kind::kDepth) {
+    loop->map_size = [replanner]() {
+      const OccupancyGrid& grid = *(*replanner)->occupancy();
+      return OccupancySize{grid.occupied_count(), grid.free_count()};
+    };
+  }
 }
 
 // What the replanner found: its replans, when and how far away each box was first seen, the

@@ -168,6 +168,20 @@ std::vector<TelemetryQuantity> MakeQuantities() {
        0,
        false,
        [](const Sample& s, double* o) { *o = s.replans; }},
+      {TelemetryPart::kMap,
+       {"map_occupied"},
+       "",
+       "map_occupied",
+       0,
+       false,
+       [](const Sample& s, double* o) { *o = static_cast<double>(s.map.occupied); }},
+      {TelemetryPart::kMap,
+       {"map_free"},
+       "",
+       "map_free",
+       0,
+       false,
+       [](const Sample& s, double* o) { *o = static_cast<double>(s.map.free); }},
       {TelemetryPart::kAir,
        {"wind_x", "wind_y", "wind_z"},
        "",
@@ -268,7 +282,8 @@ const std::vector<TelemetryQuantity>& TelemetryQuantities() {
 
 TelemetryExtras TelemetryExtrasFor(const FlightSetup& setup) {
   return {setup.wind.Enabled() || setup.aero.Enabled(), setup.sensors.Enabled(), !setup.via.empty(),
-          setup.HasUnknown()};
+          setup.HasUnknown(),
+          setup.HasUnknown() && setup.sensing.kind == SensingParams::Kind::kDepth};
 }
 
 TelemetrySchema::TelemetrySchema(const Controller& controller, const TelemetryExtras& extras)
@@ -287,6 +302,7 @@ TelemetrySchema::TelemetrySchema(std::vector<std::string> controller_columns,
   columns_.insert(columns_.end(), controller_columns_.begin(), controller_columns_.end());
   const std::pair<bool, TelemetryPart> extra_parts[] = {{extras.goals, TelemetryPart::kGoals},
                                                         {extras.replans, TelemetryPart::kReplans},
+                                                        {extras.map, TelemetryPart::kMap},
                                                         {extras.air, TelemetryPart::kAir},
                                                         {extras.sensors, TelemetryPart::kSensors}};
   for (const auto& [on, part] : extra_parts) {

@@ -21,11 +21,12 @@ struct TelemetryExtras {
   bool sensors = false;  // est_*, imu_*, meas_* (README: telemetry columns)
   bool goals = false;    // goal_index: a mission through several goals
   bool replans = false;  // replans: unknown boxes, replanned around in flight
+  bool map = false;      // map_occupied, map_free: the depth camera's occupancy map
 };
 TelemetryExtras TelemetryExtrasFor(const FlightSetup& setup);
 
 // Which flights have a quantity in telemetry.csv: every flight, or one with the extra.
-enum class TelemetryPart { kEvery, kGoals, kReplans, kAir, kSensors };
+enum class TelemetryPart { kEvery, kGoals, kReplans, kMap, kAir, kSensors };
 
 // One quantity of the telemetry, once: its columns in telemetry.csv and its array in the
 // Python result of run() (Simulator.run's doc), and how a sample gives its numbers.

@@ -68,18 +68,25 @@ void DepthCameraParams::Validate(const char* table) const {
   }
 }
 
-Vec3 DepthImage::RayC(int u, int v) const {
-  const Vec3 ray((u + 0.5 - 0.5 * width) / fx, (v + 0.5 - 0.5 * height) / fy, 1.0);
-  return ray.normalized();
-}
-
 Vec3 DepthImage::PointW(int u, int v) const {
   const Vec3 ray = RayC(u, v);
   return origin_W + R_WC * (ray / ray.z() * depth[static_cast<size_t>(v * width + u)]);
 }
 
 DepthCamera::DepthCamera(const DepthCameraParams& params, std::uint64_t seed)
-    : params_(params), rng_(seed) {}
+    : params_(params), rng_(seed) {
+  const double fx = 0.5 * params_.width / std::tan(0.5 * params_.fov_horizontal);
+  const double fy = 0.5 * params_.height / std::tan(0.5 * params_.fov_vertical);
+  auto rays = std::make_shared<std::vector<Vec3>>();
+  for (int v = 0; v < params_.height; ++v) {
+    for (int u = 0; u < params_.width; ++u) {
+      rays->push_back(
+          Vec3((u + 0.5 - 0.5 * params_.width) / fx, (v + 0.5 - 0.5 * params_.height) / fy, 1.0)
+              .normalized());
+    }
+  }
+  rays_C_ = std::move(rays);
+}
 
 Vec3 DepthCamera::OriginW(const State& body) const {
   return body.p_W + body.q_WB * params_.mount_B;
@@ -98,6 +105,7 @@ DepthImage DepthCamera::Capture(const State& body, const std::vector<Aabb>& boxe
   image.R_WC = RotationWC(body);
   image.fx = 0.5 * params_.width / std::tan(0.5 * params_.fov_horizontal);
   image.fy = 0.5 * params_.height / std::tan(0.5 * params_.fov_vertical);
+  image.rays_C = rays_C_;
   const size_t pixels = static_cast<size_t>(params_.width) * static_cast<size_t>(params_.height);
   image.depth.assign(pixels, 0.0f);
   image.hit.assign(pixels, kNoReturn);

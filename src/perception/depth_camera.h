@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <random>
 #include <vector>
@@ -49,9 +50,12 @@ struct DepthImage {
   // or dropped), and what the ray hit (a box index, kFloor, kNoReturn or kDropped)
   std::vector<float> depth;
   std::vector<int> hit;
+  // the unit rays through the pixels' centres in camera axes, rows from the top (the camera's,
+  // shared by its frames)
+  std::shared_ptr<const std::vector<Vec3>> rays_C;
 
   // The unit ray through pixel (u, v) in camera axes.
-  Vec3 RayC(int u, int v) const;
+  const Vec3& RayC(int u, int v) const { return (*rays_C)[static_cast<size_t>(v * width + u)]; }
   // The world point a pixel's depth gives [m] (meaningless when its depth is 0).
   Vec3 PointW(int u, int v) const;
   double fx = 1.0, fy = 1.0;  // [px] focal lengths
@@ -81,7 +85,8 @@ class DepthCamera {
 
   DepthCameraParams params_;
   std::mt19937_64 rng_;
-  std::vector<Vec3> rays_;       // this frame's rays in the world, per pixel
+  std::shared_ptr<const std::vector<Vec3>> rays_C_;  // per pixel, in camera axes
+  std::vector<Vec3> rays_;                           // this frame's rays in the world, per pixel
   std::vector<double> nearest_;  // [m] along each ray to what it hit (range: nothing)
 };
 

@@ -205,8 +205,22 @@ FlightSetup DepthRoom(std::uint64_t seed) {
 
 }  // namespace
 
+namespace {
+
+// The occupancy map's size in each telemetry sample.
+class MapSizes : public MissionObserver {
+ public:
+  void OnSample(const TelemetrySample& s) override { sizes.push_back(s.map); }
+  std::vector<OccupancySize> sizes;
+};
+
+}  // namespace
+
 TEST_CASE("depth: the wall is found by its face, mapped, flown around, the same seed repeats") {
-  const MissionResult first = RunMission(DepthRoom(3), MissionParts());
+  MapSizes map_sizes;
+  MissionParts parts;
+  parts.observers.push_back(&map_sizes);
+  const MissionResult first = RunMission(DepthRoom(3), parts);
   for (const ReplanEvent& e : first.replans)
     MESSAGE(e.t << " s " << e.trigger << ": " << e.outcome << ", path " << e.path_length << " m");
   MESSAGE(std::string(ToString(first.flight.status)) << " at " << first.flight.time << " s");
@@ -219,6 +233,11 @@ TEST_CASE("depth: the wall is found by its face, mapped, flown around, the same 
   CHECK(first.revealed_distance[0] <= 5.0);
   REQUIRE(first.occupancy.has_value());
   CHECK(first.occupancy->grid->occupied_count() > 100);
+  // telemetry follows the map as it grows, to its final size
+  REQUIRE_FALSE(map_sizes.sizes.empty());
+  CHECK(map_sizes.sizes.front().free < map_sizes.sizes.back().free);
+  CHECK(map_sizes.sizes.back().occupied == first.occupancy->grid->occupied_count());
+  CHECK(map_sizes.sizes.back().free == first.occupancy->grid->free_count());
   const MissionResult again = RunMission(DepthRoom(3), MissionParts());
   CHECK(again.revealed_at == first.revealed_at);
   CHECK(again.flight.time == first.flight.time);

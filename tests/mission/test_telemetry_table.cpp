@@ -41,6 +41,23 @@ TEST_CASE("the telemetry schema takes the flying controller's own columns") {
   CHECK_THROWS_AS(bare.AddRow(sample, &other), std::logic_error);
 }
 
+TEST_CASE("a depth camera's flight has the occupancy map's size in telemetry") {
+  const std::unique_ptr<Controller> cascade = MakeController(ControllerConfig(), QuadParams());
+  const TelemetrySchema schema(*cascade, TelemetryExtras{false, false, false, true, true});
+  const std::vector<std::string>& columns = schema.columns();
+  REQUIRE(columns.size() >= 3);
+  CHECK(columns[columns.size() - 3] == "replans");
+  CHECK(columns[columns.size() - 2] == "map_occupied");
+  CHECK(columns.back() == "map_free");
+  TelemetrySample sample;
+  sample.report.assign(6, 0.0);
+  sample.map = {12, 345};
+  CsvTable table = schema.Table();
+  schema.AddRow(sample, &table);
+  const std::string& text = table.Text();
+  CHECK(text.substr(text.rfind(",", text.size() - 6)) == ",12,345\n");
+}
+
 TEST_CASE("each telemetry quantity is written once, for the CSV and for run()'s result alike") {
   std::set<std::string> columns, keys;
   for (const TelemetryQuantity& q : TelemetryQuantities()) {

@@ -487,6 +487,11 @@ class WholeRun(unittest.TestCase):
         self.assertEqual(occupancy["resolution"], 0.1)
         self.assertGreater(occupancy["occupied"], 0)
         self.assertEqual(occupancy["occupied_boxes"].shape[1], 6)
+        # per sample, the map's size as it grew, to its final size
+        self.assertEqual(len(result["map_occupied"]), len(result["time"]))
+        self.assertEqual(result["map_occupied"][-1], occupancy["occupied"])
+        self.assertEqual(result["map_free"][-1], occupancy["free"])
+        self.assertLess(result["map_free"][0], result["map_free"][-1])
         with self.assertRaises(ValueError) as raised:
             aerobox.fly(scenario, sensing={"kind": "depth", "fov": 190})
         self.assertIn("sensing.fov", str(raised.exception))
