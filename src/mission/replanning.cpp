@@ -518,6 +518,15 @@ std::optional<Replanner::Continuation> Replanner::Continue(const StartState& sta
       heads.insert(heads.begin(), {start.p_W, lead});
     }
   }
+  // a vehicle at rest within the clearance of cells seen after it stopped backs off first, to
+  // the nearest point that keeps it: the world near the start is the vehicle's own there
+  std::optional<Aabb> escape;
+  if (speed < 0.1 && !trajectory_world_->IsPointFree(start.p_W)) {
+    const std::optional<Vec3> out = NearestFree(start.p_W);
+    if (!out) return std::nullopt;
+    heads = {{start.p_W, *out}};
+    escape = Aabb{start.p_W.cwiseMin(*out), start.p_W.cwiseMax(*out)};
+  }
   for (const std::vector<Vec3>& head : heads) {
     const Clock::time_point planning = Clock::now();
     std::optional<std::vector<Vec3>> path = FindPath(head.back(), goals_reached, event);
@@ -526,7 +535,7 @@ std::optional<Replanner::Continuation> Replanner::Continue(const StartState& sta
     path->insert(path->begin(), head.begin(), head.end() - 1);
     event->path_length = PathLength(*path);
     const Clock::time_point solving = Clock::now();
-    TrajectoryResult next = Continue(start, *path);
+    TrajectoryResult next = Continue(start, *path, escape);
     event->solve_time += Seconds(solving);
     if (next.status == TrajectoryStatus::kSolved) {
       return Continuation{std::move(*path), std::move(next.trajectory)};
@@ -535,8 +544,32 @@ std::optional<Replanner::Continuation> Replanner::Continue(const StartState& sta
   return std::nullopt;
 }
 
-TrajectoryResult Replanner::Continue(const StartState& start, const std::vector<Vec3>& path) const {
-  const TrajectoryWorld view = ViewOf(*trajectory_world_);
+std::optional<Vec3> Replanner::NearestFree(const Vec3& p) const {
+  for (const double radius : {0.05, 0.1, 0.15, 0.2, 0.3, 0.4}) {  // [m]
+    for (int i = 0; i < 27; ++i) {
+      const Vec3 d(i % 3 - 1, (i / 3) % 3 - 1, i / 9 - 1);
+      if (d.isZero()) continue;
+      const Vec3 q = p + radius * d.normalized();
+      if (trajectory_world_->IsPointFree(q)) return q;
+    }
+  }
+  return std::nullopt;
+}
+
+TrajectoryResult Replanner::Continue(const StartState& start, const std::vector<Vec3>& path,
+                                     const std::optional<Aabb>& escape) const {
+  TrajectoryWorld view = ViewOf(*trajectory_world_);
+  if (escape) {
+    // within the escape's box (grown by a few centimetres for the trajectory's curve), free
+    const Aabb near{escape->min.array() - 0.05, escape->max.array() + 0.05};
+    const CollisionWorld& world = *trajectory_world_;
+    view.box_free = [&world, near](const Aabb& box) {
+      return near.Contains(box.min) && near.Contains(box.max) ? true : world.IsBoxFree(box);
+    };
+    view.segment_free = [&world, near](const Vec3& a, const Vec3& b) {
+      return near.Contains(a) && near.Contains(b) ? true : world.IsSegmentFree(a, b);
+    };
+  }
   if (std::optional<TrajectoryResult> next = generator_->Continue(start, path, view)) return *next;
   return *minsnap_->Continue(start, path, view);
 }

@@ -168,8 +168,13 @@ class Replanner {
   // One reading at `t`: the boxes it revealed first; true when what the planner avoids changed.
   bool Sense(double t, const State& state, std::vector<size_t>* newly);
   bool SenseDepth(double t, const State& state, std::vector<size_t>* newly);
-  // The trajectory from `start` along `path`, through the seam.
-  TrajectoryResult Continue(const StartState& start, const std::vector<Vec3>& path) const;
+  // The trajectory from `start` along `path`, through the seam; inside `escape` [m], anything
+  // goes (a vehicle backing off from cells it stopped too near).
+  TrajectoryResult Continue(const StartState& start, const std::vector<Vec3>& path,
+                            const std::optional<Aabb>& escape = std::nullopt) const;
+  // The nearest point to `p` (within 0.4 m, in 26 directions) where the trajectory's world is
+  // free.
+  std::optional<Vec3> NearestFree(const Vec3& p) const;
   // A path from `start` through the goals still ahead and the trajectory along it (nothing when
   // no path or no trajectory was found; `event` gets the times and the last path's length).
   struct Continuation {

@@ -309,3 +309,42 @@ TEST_CASE("a vehicle whose every stop ahead is blocked still brakes rather than 
 }
 
 }  // namespace aerobox
+
+namespace aerobox {
+
+TEST_CASE("a vehicle at rest within the clearance of a box just found backs off and replans") {
+  // a half wall found 2 cm from the body of a vehicle hovering before it: the trajectory's
+  // clearance (0.05 m) no longer holds where it is, so no plan may start there
+  Map map;
+  map.name = "half wall";
+  map.bounds = {Vec3(0, 0, 0), Vec3(10, 4, 3)};
+  map.boxes.push_back({{Vec3(5, 0, 0), Vec3(5.3, 2.5, 3)}, Vec3(1, 0, 0), "wall", 1});
+  const Vec3 from(4.93, 1, 1.5), to(9, 1, 1.5);
+  Reference ahead;  // from rest, straight through the wall
+  ahead.duration = 4.0;
+  ahead.evaluate = [from, to](double t, int derivative) -> Vec3 {
+    const double s = t / 4.0;
+    if (derivative == kPosition) return from + (to - from) * (3 * s * s - 2 * s * s * s);
+    if (derivative == kVelocity) return (to - from) * (6 * s - 6 * s * s) / 4.0;
+    return Vec3::Zero();
+  };
+  SensingParams sensing;
+  GeneratorConfig generator;
+  Replanner replanner(map, {true}, CollisionParams{}, CollisionParams{Vec3(0.1, 0.1, 0.05), 0.05},
+                      PlannerConfig{}, generator, sensing, ReplanParams{}, {to}, {from, to}, 1);
+  State state;
+  state.p_W = from;
+  const std::optional<Reference> next = replanner.Update(0.0, 0.0, state, 0, ahead);
+  REQUIRE(replanner.events().size() == 1);
+  CHECK(replanner.events()[0].outcome == "replanned");
+  REQUIRE(next.has_value());
+  // it backs away from the wall first, then goes round its end
+  CHECK(next->evaluate(0.5, kPosition).x() < from.x());
+  bool round = false;
+  for (double t = 0; t <= next->duration; t += 0.05)
+    round |= next->evaluate(t, kPosition).y() > 2.5;
+  CHECK(round);
+  CHECK(next->evaluate(next->duration, kPosition).isApprox(to, 1e-3));
+}
+
+}  // namespace aerobox
