@@ -203,15 +203,25 @@ std::vector<Aabb> OccupancyGrid::OccupiedBoxes(bool columns) const {
     z1 = hi;
   }
   flush();
-  // ... then runs of the same z-run along y
-  std::vector<Aabb> boxes;
+  // ... then runs of the same z-run along y, and runs of the same rectangle along x
+  std::map<std::tuple<int, int, int, int>, std::vector<long>> slabs;  // (y0, y1, z0, z1) -> ix's
   for (const auto& [key, ys] : runs) {
     const auto [ix, z0, z1] = key;
     for (size_t i = 0; i < ys.size();) {
       size_t j = i;
       while (j + 1 < ys.size() && ys[j + 1] == ys[j] + 1) ++j;
-      const Vec3 min = bounds_.min + resolution_ * Vec3(ix, ys[i], z0);
-      const Vec3 max = bounds_.min + resolution_ * Vec3(ix + 1, ys[j] + 1, z1 + 1);
+      slabs[{ys[i], ys[j], z0, z1}].push_back(ix);
+      i = j + 1;
+    }
+  }
+  std::vector<Aabb> boxes;
+  for (const auto& [key, xs] : slabs) {
+    const auto [y0, y1, z0, z1] = key;
+    for (size_t i = 0; i < xs.size();) {
+      size_t j = i;
+      while (j + 1 < xs.size() && xs[j + 1] == xs[j] + 1) ++j;
+      const Vec3 min = bounds_.min + resolution_ * Vec3(xs[i], y0, z0);
+      const Vec3 max = bounds_.min + resolution_ * Vec3(xs[j] + 1, y1 + 1, z1 + 1);
       boxes.push_back({min, max.cwiseMin(bounds_.max)});
       i = j + 1;
     }

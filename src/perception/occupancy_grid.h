@@ -43,7 +43,7 @@ class OccupancyGrid {
   int Insert(const DepthImage& image, double range, const std::vector<bool>& ignored);
 
   Occupancy At(const Vec3& p) const;  // kUnknown outside the grid
-  // The occupied cells merged into boxes (runs along z, then along y); with `columns`, each
+  // The occupied cells merged into boxes (runs along z, then y, then x); with `columns`, each
   // run grown up and down through unknown cells (OccupancyParams::columns): what the planner
   // avoids.
   std::vector<Aabb> OccupiedBoxes(bool columns = false) const;

@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "perception/occupancy_grid.h"
@@ -103,4 +104,24 @@ TEST_CASE(
   CHECK(high < 2.5);
   CHECK(low_columns == doctest::Approx(0.0));  // down to the floor and up to the top
   CHECK(high_columns == doctest::Approx(3.0));
+}
+
+TEST_CASE("occupancy: a face seen along y merges into as few boxes as one seen along x") {
+  // the room's wall turned: across y at y = 5, seen from y = 1 looking along +y
+  Room room;
+  room.bounds = {Vec3(0, 0, 0), Vec3(6, 10, 3)};
+  room.boxes = {{Vec3(1, 5, 0), Vec3(5, 5.3, 3)}};
+  room.body.p_W = Vec3(3, 1, 1.5);
+  room.body.q_WB = Quat(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitZ()));
+  OccupancyGrid turned(room.bounds, OccupancyParams());
+  turned.Insert(room.Frame(), room.params.range, {});
+  Room along_x;
+  OccupancyGrid grid(along_x.bounds, OccupancyParams());
+  grid.Insert(along_x.Frame(), along_x.params.range, {});
+  REQUIRE(turned.occupied_count() > 100);
+  CHECK(turned.OccupiedBoxes().size() < static_cast<size_t>(turned.occupied_count()) / 5);
+  CHECK(turned.OccupiedBoxes().size() <= grid.OccupiedBoxes().size() + 2);
+  double volume = 0.0;
+  for (const Aabb& b : turned.OccupiedBoxes()) volume += b.Size().prod();
+  CHECK(volume == doctest::Approx(turned.occupied_count() * 1e-3));
 }
