@@ -89,6 +89,28 @@ code=0
 grep -q "$before done before; $((6 - before)) to run" "$work/resume.out" || fail "$(cat "$work/resume.out")"
 $equal "$work/whole/results.jsonl" "$work/cut/results.jsonl"
 
+# a depth camera in a sweep: the grid sets the occupancy map's resolution and the camera's
+# width; each run's summary has its map at that resolution
+cat > "$work/sweeps/depth.toml" <<TOML
+scenarios = ["$top/scenes/depth_forest/scenario.toml"]
+seeds = [3]
+[grid]
+"sensing.resolution" = [0.1, 0.2]
+"sensing.width" = [160]
+TOML
+"$aerobox" sweep "$work/sweeps/depth.toml" --out "$work/depth" -j 2 --quiet > /dev/null ||
+  fail "depth sweep: exit $?"
+/usr/bin/python3 - "$work/depth/results.jsonl" <<'PY' || fail "depth sweep: $(cat "$work/depth/results.jsonl")"
+import json, sys
+results = [json.loads(line) for line in open(sys.argv[1])]
+assert sorted(r["params"]["sensing.resolution"] for r in results) == [0.1, 0.2]
+for r in results:
+    occupancy = r["summary"]["occupancy"]
+    assert occupancy["resolution_m"] == r["params"]["sensing.resolution"], occupancy
+    assert occupancy["occupied_cells"] > 0 and occupancy["free_cells"] > 0, occupancy
+    assert len(r["summary"]["revealed"]) > 0
+PY
+
 # bad sweep files: exit 2, the file and line named, nothing written
 bad() {  # bad NAME EXPECTED-MESSAGE, the sweep on standard input
   cat > "$work/sweeps/$1.toml"
