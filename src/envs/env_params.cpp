@@ -58,6 +58,9 @@ void EnvParams::Describe(Archive& a) {
   a.Integer({"range_rays", "", "navigate: horizontal range rays (then one down, one up)"},
             &range_rays, 0, 360);
   a.Number({"range_max", "m", "navigate: a range ray's reach"}, &range_max, 0.1, 100);
+  a.Integer({"depth_width", "px", "navigate: a depth image in the observation, its columns"},
+            &depth_width, 0, 256);
+  a.Integer({"depth_height", "px", "navigate: the depth image's rows"}, &depth_height, 0, 256);
   a.Number({"reward_alive", "", "added every step"}, &reward_alive, 0, 1e3);
   a.Number({"reward_position", "1/m", "times the distance to the target, taken off"},
            &reward_position, 0, 1e3);
@@ -100,6 +103,15 @@ void EnvParams::Validate() const {
     throw std::invalid_argument("env.control_rate " + std::to_string(control_rate) +
                                 " Hz must divide the 1000 Hz physics (1000, 500, 250, 200, "
                                 "100, 50 ...)");
+  }
+  if ((depth_width > 0) != (depth_height > 0)) {
+    throw std::invalid_argument(
+        "env.depth_height: a depth image needs both depth_width and depth_height (got " +
+        std::to_string(depth_width) + " x " + std::to_string(depth_height) + " px)");
+  }
+  if (depth_width > 0 && task != "navigate") {
+    throw std::invalid_argument("env.depth_width: the depth image is navigate's (task is \"" +
+                                task + "\")");
   }
   if (task != "navigate" && target.z() - start_radius < 0.1) {
     throw std::invalid_argument(

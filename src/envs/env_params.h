@@ -58,6 +58,12 @@ struct EnvParams {
   double arrival_radius = 0.3;  // [m] from the goal: arrived, the episode ends
   int range_rays = 16;     // horizontal rays (world frame, from +x anticlockwise), then down, up
   double range_max = 4.0;  // [m] a ray's reach
+  // navigate: a depth image in the observation, after the ranges (0 x 0: none): the camera of
+  // [sensing] kind "depth" (87 x 58 deg, on the nose, looking along body x) reaching range_max;
+  // per pixel, rows from the top, the depth along the optical axis [m], range_max where
+  // nothing is within reach
+  int depth_width = 0;   // [px]
+  int depth_height = 0;  // [px]
   // the reward per step: alive - position |p - target| - velocity |v| - rate |w| - action |a|^2
   double reward_alive = 1.0;
   double reward_position = 1.0;  // [1/m]

@@ -10,6 +10,7 @@
 #include "geometry/collision_world.h"
 #include "geometry/ray_cast.h"
 #include "map/map_reader.h"
+#include "perception/depth_camera.h"
 
 namespace aerobox {
 namespace {
@@ -218,6 +219,13 @@ class NavigateTask : public EnvTask {
     }
     rays_.push_back(-Vec3::UnitZ());
     rays_.push_back(Vec3::UnitZ());
+    if (params.depth_width > 0) {
+      DepthCameraParams camera;
+      camera.width = params.depth_width;
+      camera.height = params.depth_height;
+      camera.range = params.range_max;
+      camera_.emplace(camera, 0);  // exact: no noise, no dropouts, so the seed draws nothing
+    }
     EnvRandom probe;
     probe.Seed(0);
     const std::optional<std::pair<Vec3, Vec3>> found = Endpoints(probe);
@@ -256,6 +264,12 @@ class NavigateTask : public EnvTask {
   void Observe(double, const State& s, float* out) const override {
     for (size_t k = 0; k < rays_.size(); ++k) {
       out[k] = static_cast<float>(CastRay(boxes_, bounds_, s.p_W, rays_[k], params_.range_max));
+    }
+    if (!camera_) return;
+    const DepthImage image = camera_->Capture(s, boxes_, bounds_);
+    float* depth = out + rays_.size();
+    for (size_t k = 0; k < image.depth.size(); ++k) {
+      depth[k] = image.depth[k] > 0.0f ? image.depth[k] : static_cast<float>(params_.range_max);
     }
   }
 
@@ -309,7 +323,8 @@ class NavigateTask : public EnvTask {
   CollisionWorld world_;
   std::vector<Aabb> boxes_;
   std::vector<Vec3> rays_;
-  std::pair<Vec3, Vec3> fallback_;  // a free start and goal, found when made
+  mutable std::optional<DepthCamera> camera_;  // depth_width x depth_height; Capture keeps buffers
+  std::pair<Vec3, Vec3> fallback_;             // a free start and goal, found when made
   Vec3 goal_;
   double last_distance_ = 0.0;
 };
@@ -318,6 +333,11 @@ std::vector<std::string> RangeNames(const EnvParams& p) {
   std::vector<std::string> names;
   for (int k = 0; k < p.range_rays; ++k) names.push_back("range" + std::to_string(k));
   names.insert(names.end(), {"range_down", "range_up"});
+  for (int v = 0; v < p.depth_height; ++v) {
+    for (int u = 0; u < p.depth_width; ++u) {
+      names.push_back("depth_" + std::to_string(v) + "_" + std::to_string(u));
+    }
+  }
   return names;
 }
 

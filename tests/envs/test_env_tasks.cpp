@@ -15,6 +15,7 @@
 #include "control/position_control.h"
 #include "envs/env_batch.h"
 #include "geometry/collision_world.h"
+#include "perception/depth_camera.h"
 #include "planning/rrt_star.h"
 #include "vehicle/model_names.h"
 
@@ -199,6 +200,45 @@ TEST_CASE("navigate: the ranges are what MuJoCo's ray sees, capped by the bounds
     }
   }
   CHECK(hits > 20);  // trees and the floor were seen, not only the reach
+}
+
+TEST_CASE("navigate: the depth image is what MuJoCo's ray sees along each pixel, within reach") {
+  EnvParams params = Navigate();
+  params.depth_width = 16;
+  params.depth_height = 12;
+  One env(params);
+  const Simulation& sim = env.world().sim();
+  const int vehicle = mj_name2id(sim.model(), mjOBJ_BODY, model_names::kBody);
+  const int floor_geom = mj_name2id(sim.model(), mjOBJ_GEOM, model_names::kFloorGeom);
+  DepthCameraParams camera;  // the observation's camera: the defaults, at 16 x 12 px
+  camera.width = 16;
+  camera.height = 12;
+  camera.range = params.range_max;
+  const std::vector<std::string> names = params.ObservationNames();
+  REQUIRE(names.back() == "depth_11_15");
+  REQUIRE(env.batch.observation_size() == static_cast<int>(names.size()));
+  int trees = 0;
+  for (std::uint64_t seed = 0; seed < 20; ++seed) {
+    env.Reset(seed);
+    // the pose and rays of the camera on the vehicle as it is (the image itself is not used)
+    const DepthImage frame = DepthCamera(camera, 1).Capture(env.world().state(), {}, Aabb());
+    for (int v = 0; v < 12; ++v) {
+      for (int u = 0; u < 16; ++u) {
+        const Vec3 d = frame.R_WC * frame.RayC(u, v);
+        int geom = -1;
+        const mjtByte groups[mjNGROUP] = {1, 1, 0, 0, 0, 0};
+        const double mj = mj_ray(sim.model(), sim.data(), frame.origin_W.data(), d.data(), groups,
+                                 1, vehicle, &geom);
+        const float depth = env.Get("depth_" + std::to_string(v) + "_" + std::to_string(u));
+        CHECK(depth > 0.0f);
+        CHECK(depth <= params.range_max + 1e-5);
+        if (mj < 0 || mj > params.range_max || geom == floor_geom) continue;
+        CHECK(depth == doctest::Approx(mj * frame.RayC(u, v).z()).epsilon(1e-4));
+        ++trees;
+      }
+    }
+  }
+  CHECK(trees > 50);
 }
 
 TEST_CASE("navigate: free endpoints apart, arrival by a straight flight, a tree is a crash") {

@@ -260,6 +260,16 @@ class Options(unittest.TestCase):
         self.assertAlmostEqual(ranges["range_down"], 1.0, places=5)  # the floor
         with self.assertRaisesRegex(ValueError, r"is not free"):
             nav.reset(options={"target": [0.01, 5, 1]})  # against the bound
+        # a depth image after the ranges, in metres, range_max where nothing is within reach
+        seeing = gym.make(aerobox.envs.NAVIGATE, depth_width=8, depth_height=6).unwrapped
+        obs, _ = seeing.reset(seed=1)
+        self.assertEqual(seeing.observation_space.shape, (22 + 18 + 48,))
+        self.assertEqual(seeing.observation_names[-1], "depth_5_7")
+        depth = obs[-48:]
+        self.assertTrue(np.all((depth > 0) & (depth <= 4.0 + 1e-6)))
+        self.assertLess(depth.min(), 4.0)  # the floor, at least
+        with self.assertRaisesRegex(ValueError, r"depth_height"):
+            gym.make(aerobox.envs.NAVIGATE, depth_width=8)
 
 
 class BadInputs(unittest.TestCase):

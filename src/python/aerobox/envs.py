@@ -32,7 +32,9 @@ Observation (float32 Box), in this order (observation_names gives the names):
     action; then the task's own: track: the reference's velocity and acceleration now, and for
     each sample ahead its position minus the vehicle's, velocity and acceleration; navigate: the
     range [m] along range_rays horizontal world directions (from +x anticlockwise), then down and
-    up, up to range_max, to the nearest box or the map's bounds.
+    up, up to range_max, to the nearest box or the map's bounds; with depth_width x depth_height
+    > 0, a depth image (rows from the top): the depth [m] along the optical axis of a camera
+    looking along body x (87 x 58 deg), range_max where nothing is within reach.
 Reward per step (the terms are in `info` by name): hover and track: reward_alive -
     reward_position |p - reference| - reward_velocity |v - v_reference| - reward_rate |w_B|
     - reward_action |a|^2; navigate: reward_alive + reward_progress (the step's approach to the
