@@ -195,8 +195,13 @@ MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
   std::optional<Replanner> replanner;
   if (setup.HasUnknown()) AddReplanner(setup, plan, &replanner, &loop);
   if (!parts.observers.empty()) {
-    loop.telemetry = [&parts, &replanner](const TelemetrySample& s) {
+    loop.telemetry = [&parts, &replanner, frames = 0](const TelemetrySample& s) mutable {
+      const bool new_frame = replanner && replanner->cost().frames != frames;
+      if (new_frame) frames = replanner->cost().frames;
       for (MissionObserver* observer : parts.observers) {
+        if (new_frame && replanner->depth_image()) {
+          observer->OnDepthImage(*replanner->depth_image());
+        }
         if (replanner) observer->OnDiscovery(replanner->revealed_at(), replanner->events());
         observer->OnSample(s);
       }

@@ -18,6 +18,8 @@
 
 namespace aerobox {
 
+struct DepthImage;  // perception/depth_camera.h
+
 // Told what happens, in this order; every call may throw to stop the run (the exception
 // leaves RunMission after the scene thread has been joined).
 class MissionObserver {
@@ -39,6 +41,8 @@ class MissionObserver {
   // yet or known from the start), and every replan so far.
   virtual void OnDiscovery(const std::vector<double>& /*revealed_at*/,
                            const std::vector<ReplanEvent>& /*replans*/) {}
+  // With a depth camera, before the OnSample after each new frame: the frame.
+  virtual void OnDepthImage(const DepthImage& /*image*/) {}
 };
 
 enum class MissionStatus { kReachedGoal, kNoPath, kNoTrajectory, kFlightFailed };

@@ -220,7 +220,9 @@ bool Replanner::Sense(double t, const State& state, std::vector<size_t>* newly) 
 
 bool Replanner::SenseDepth(double t, const State& state, std::vector<size_t>* newly) {
   Clock::time_point begin = Clock::now();
-  const DepthImage image = camera_->Capture(state, extents_, map_.bounds);
+  auto captured = std::make_shared<DepthImage>(camera_->Capture(state, extents_, map_.bounds));
+  depth_image_ = captured;
+  const DepthImage& image = *captured;
   ++cost_.frames;
   cost_.capture += Seconds(begin);
   for (int v = 0; v < image.height; ++v) {

@@ -142,6 +142,8 @@ class Replanner {
   const std::vector<double>& revealed_distance() const { return revealed_distance_; }
   // kDepth: the occupancy map (nothing for the other kinds)
   std::shared_ptr<const OccupancyGrid> occupancy() const { return grid_; }
+  // kDepth: the camera's last frame (nothing before the first)
+  std::shared_ptr<const DepthImage> depth_image() const { return depth_image_; }
   const SensingCost& cost() const { return cost_; }
   int unknown_count() const;
   int revealed_count() const;
@@ -203,6 +205,7 @@ class Replanner {
   std::vector<Aabb> extents_;            // every box of the map: what the depth camera sees
   std::optional<DepthCamera> camera_;    // kDepth
   std::shared_ptr<OccupancyGrid> grid_;  // kDepth
+  std::shared_ptr<const DepthImage> depth_image_;  // kDepth: the last frame
   SensingCost cost_;
   std::optional<CollisionWorld> planner_world_, trajectory_world_;
   double next_sense_ = 0.0;

@@ -1,6 +1,8 @@
 #include "outputs/flight_outputs.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <iomanip>
 #include <limits>
@@ -11,6 +13,7 @@
 #include "common/stop.h"
 #include "mission/telemetry_table.h"
 #include "outputs/files.h"
+#include "perception/depth_camera.h"
 #include "render/png.h"
 
 namespace aerobox {
@@ -138,6 +141,48 @@ void RenderOutputs::OnDiscovery(const std::vector<double>& revealed_at,
   }
 }
 
+Image ColourDepth(const DepthImage& image, double range) {
+  Image out;
+  out.width = image.width;
+  out.height = image.height;
+  out.rgb.assign(static_cast<size_t>(3 * image.width * image.height), 0);
+  const std::uint8_t near[3] = {255, 220, 60}, far[3] = {40, 10, 60};
+  for (int v = 0; v < image.height; ++v) {
+    for (int u = 0; u < image.width; ++u) {
+      const float depth = image.depth[static_cast<size_t>(v * image.width + u)];
+      if (!(depth > 0.0f)) continue;
+      const double t = std::clamp(depth / range, 0.0, 1.0);
+      std::uint8_t* px = out.Pixel(u, v);
+      for (int c = 0; c < 3; ++c)
+        px[c] = static_cast<std::uint8_t>(near[c] + t * (far[c] - near[c]));
+    }
+  }
+  return out;
+}
+
+void DrawInset(const Image& inset, Image* frame) {
+  if (inset.width <= 0 || frame->width < 16) return;
+  const int width = frame->width / 4;
+  const int height = std::max(1, width * inset.height / inset.width);
+  const int x0 = frame->width - width - 8, y0 = 8;
+  if (x0 < 1 || y0 + height + 1 > frame->height) return;
+  for (int y = -1; y <= height; ++y) {
+    for (int x = -1; x <= width; ++x) {
+      std::uint8_t* px = frame->Pixel(x0 + x, y0 + y);
+      if (x < 0 || y < 0 || x == width || y == height) {
+        px[0] = px[1] = px[2] = 255;
+        continue;
+      }
+      const std::uint8_t* from = inset.Pixel(x * inset.width / width, y * inset.height / height);
+      std::copy(from, from + 3, px);
+    }
+  }
+}
+
+void RenderOutputs::OnDepthImage(const DepthImage& image) {
+  depth_inset_ = ColourDepth(image, setup_.sensing.range);
+}
+
 void RenderOutputs::OnPlan(const PlanOutcome& plan) {
   overlay_.path = plan.result.path;
   overlay_.start = plan.start.used;
@@ -217,6 +262,7 @@ void RenderOutputs::OnSample(const TelemetrySample& s) {
   overlay_.vehicle = far ? std::optional<Vec3>(s.state.p_W) : std::nullopt;
   Frame(Hud(s.t, s.state, setup_.map.bounds.min.z(), "flying", overlay_.wind_W), options_.camera,
         overlay_);
+  DrawInset(depth_inset_, &image_);
   overlay_.vehicle.reset();
   if (png_due) {
     char name[32];

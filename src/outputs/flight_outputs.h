@@ -57,6 +57,12 @@ struct RenderOptions {
   bool show_tree = false;     // the RRT* tree's growth opens the video
 };
 
+// A depth image coloured by depth: near yellow, at `range` [m] dark purple, no return black.
+Image ColourDepth(const DepthImage& image, double range);
+// `inset` scaled (nearest pixel) to a quarter of `frame`'s width, in its top right corner, with
+// a white frame.
+void DrawInset(const Image& inset, Image* frame);
+
 // video.mp4, frames/*.png and overview.png, from a renderer made as soon as the scene exists.
 class RenderOutputs : public MissionObserver {
  public:
@@ -70,6 +76,8 @@ class RenderOutputs : public MissionObserver {
   // unknown boxes drawn faint until revealed; the paths replanning gave up, in grey
   void OnDiscovery(const std::vector<double>& revealed_at,
                    const std::vector<ReplanEvent>& replans) override;
+  // a depth camera's last frame, drawn in the frames' top right corner
+  void OnDepthImage(const DepthImage& image) override;
 
   int video_frames() const { return frames_; }
 
@@ -90,6 +98,7 @@ class RenderOutputs : public MissionObserver {
   int png_frames_ = 0;
   Simulation* sim_ = nullptr;
   std::vector<int> unknown_geoms_;  // the scene's geom of each unknown box (-1: not in it)
+  Image depth_inset_;               // the depth camera's last frame, coloured (empty: none)
   size_t replans_drawn_ = 0;
 };
 
