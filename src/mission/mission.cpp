@@ -200,7 +200,7 @@ MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
       if (new_frame) frames = replanner->cost().frames;
       for (MissionObserver* observer : parts.observers) {
         if (new_frame && replanner->depth_image()) {
-          observer->OnDepthImage(*replanner->depth_image());
+          observer->OnDepthFrame(s.t, *replanner->depth_image(), *replanner->occupancy());
         }
         if (replanner) observer->OnDiscovery(replanner->revealed_at(), replanner->events());
         observer->OnSample(s);

@@ -18,7 +18,8 @@
 
 namespace aerobox {
 
-struct DepthImage;  // perception/depth_camera.h
+struct DepthImage;    // perception/depth_camera.h
+class OccupancyGrid;  // perception/occupancy_grid.h
 
 // Told what happens, in this order; every call may throw to stop the run (the exception
 // leaves RunMission after the scene thread has been joined).
@@ -41,8 +42,10 @@ class MissionObserver {
   // yet or known from the start), and every replan so far.
   virtual void OnDiscovery(const std::vector<double>& /*revealed_at*/,
                            const std::vector<ReplanEvent>& /*replans*/) {}
-  // With a depth camera, before the OnSample after each new frame: the frame.
-  virtual void OnDepthImage(const DepthImage& /*image*/) {}
+  // With a depth camera, before the OnSample after each new frame: the frame and the occupancy
+  // map it was fused into, at flight time `t` [s].
+  virtual void OnDepthFrame(double /*t*/, const DepthImage& /*image*/,
+                            const OccupancyGrid& /*map*/) {}
 };
 
 enum class MissionStatus { kReachedGoal, kNoPath, kNoTrajectory, kFlightFailed };

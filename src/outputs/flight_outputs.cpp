@@ -179,7 +179,7 @@ void DrawInset(const Image& inset, Image* frame) {
   }
 }
 
-void RenderOutputs::OnDepthImage(const DepthImage& image) {
+void RenderOutputs::OnDepthFrame(double, const DepthImage& image, const OccupancyGrid&) {
   depth_inset_ = ColourDepth(image, setup_.sensing.range);
 }
 

@@ -77,7 +77,7 @@ class RenderOutputs : public MissionObserver {
   void OnDiscovery(const std::vector<double>& revealed_at,
                    const std::vector<ReplanEvent>& replans) override;
   // a depth camera's last frame, drawn in the frames' top right corner
-  void OnDepthImage(const DepthImage& image) override;
+  void OnDepthFrame(double t, const DepthImage& image, const OccupancyGrid& map) override;
 
   int video_frames() const { return frames_; }
 

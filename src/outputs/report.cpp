@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "outputs/files.h"
+#include "perception/occupancy_grid.h"
 
 namespace aerobox {
 namespace fs = std::filesystem;
@@ -16,6 +17,7 @@ const std::string& ReportPageTemplate();
 namespace {
 
 constexpr double kSamplePeriod = 0.01;  // [s]: the page's telemetry, at most 100 rows a second
+constexpr double kMapPeriod = 1.0;      // [s]: the occupancy map's snapshots
 
 // The telemetry.csv columns the page shows (TelemetrySchema's names), and those of a flight in
 // wind or drag.
@@ -80,6 +82,24 @@ Json Boxes(const FlightSetup& setup, const std::vector<double>& revealed_at) {
   return boxes;
 }
 
+// The occupancy map's snapshots: {resolution, [{t, boxes: [[min x, y, z, max x, y, z], ...]}]}
+// (null without a depth camera).
+Json OccupancySnapshots(const std::vector<std::pair<double, std::vector<Aabb>>>& snapshots,
+                        double resolution) {
+  if (snapshots.empty()) return nullptr;
+  Json list = Json::array();
+  for (const auto& [t, boxes] : snapshots) {
+    Json flat = Json::array();
+    for (const Aabb& b : boxes) {
+      flat.push_back(
+          Json::array({Number(b.min.x(), 3), Number(b.min.y(), 3), Number(b.min.z(), 3),
+                       Number(b.max.x(), 3), Number(b.max.y(), 3), Number(b.max.z(), 3)}));
+    }
+    list.push_back({{"t", Number(t, 3)}, {"boxes", flat}});
+  }
+  return {{"resolution", Number(resolution, 3)}, {"snapshots", list}};
+}
+
 Json Replans(const std::vector<ReplanEvent>& replans) {
   Json array = Json::array();
   for (const ReplanEvent& r : replans) {
@@ -133,6 +153,12 @@ void ReportOutputs::OnFlightEnd(const Simulation& sim, const FlightResult& resul
   end_position_ = sim.VehicleState().p_W;
 }
 
+void ReportOutputs::OnDepthFrame(double t, const DepthImage&, const OccupancyGrid& map) {
+  if (!occupied_.empty() && t < occupied_.back().first + kMapPeriod - 1e-9) return;
+  occupied_.push_back({t, map.OccupiedBoxes(setup_.sensing.map.columns)});
+  map_resolution_ = map.resolution();
+}
+
 void ReportOutputs::OnDiscovery(const std::vector<double>& revealed_at,
                                 const std::vector<ReplanEvent>& replans) {
   revealed_at_ = revealed_at;
@@ -160,6 +186,7 @@ std::string ReportOutputs::Write(const std::string& summary_json, const std::str
                      {"bounds", Json::array({Point(map.bounds.min), Point(map.bounds.max)})},
                      {"boxes", Boxes(setup_, revealed_at_)},
                      {"replans", Replans(replans_)},
+                     {"occupancy", OccupancySnapshots(occupied_, map_resolution_)},
                      {"vehicle",
                       {{"size", Point(setup_.vehicle.collision_size)},
                        {"max_thrust", Number(setup_.vehicle.MaxRotorThrust())}}},

@@ -24,6 +24,8 @@ class ReportOutputs : public MissionObserver {
   void OnFlightEnd(const Simulation& sim, const FlightResult& result) override;
   void OnDiscovery(const std::vector<double>& revealed_at,
                    const std::vector<ReplanEvent>& replans) override;
+  // the occupied cells the planner avoids, once a second of flight
+  void OnDepthFrame(double t, const DepthImage& image, const OccupancyGrid& map) override;
 
   // Writes <folder>/report.html with the run's summary.json text and the command that repeats
   // the run. Throws InputError naming a script that is missing (install libjs-three and
@@ -42,6 +44,9 @@ class ReportOutputs : public MissionObserver {
   double next_sample_ = 0.0;                  // [s]
   std::vector<double> revealed_at_;
   std::vector<ReplanEvent> replans_;
+  // the occupancy map's occupied boxes at times [s] a second apart: (t, the boxes)
+  std::vector<std::pair<double, std::vector<Aabb>>> occupied_;
+  double map_resolution_ = 0.0;  // [m]
   bool flown_ = false;
   FlightResult result_;
   Vec3 end_position_ = Vec3::Zero();

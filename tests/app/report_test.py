@@ -76,6 +76,10 @@ class Report(unittest.TestCase):
         cls.unknown = os.path.join(cls.work.name, "unknown")
         done = fly(cls.unknown, os.path.join(TOP, "scenes/maze_unknown/scenario.toml"))
         assert done.returncode == 0, done.stderr
+        # pillars found by a depth camera: the occupancy map in time
+        cls.depth = os.path.join(cls.work.name, "depth")
+        done = fly(cls.depth, os.path.join(TOP, "scenes/depth_forest/scenario.toml"))
+        assert done.returncode == 0, done.stderr
         cls.windy = os.path.join(cls.work.name, "windy")
         done = fly(cls.windy, os.path.join(TOP, "scenes/windy_window/scenario.toml"))
         assert done.returncode == 0, done.stderr
@@ -167,6 +171,25 @@ class Report(unittest.TestCase):
         self.assert_clean(windy, console)
         self.assertTrue(windy["wind_arrow"])
         self.assertFalse(end["wind_arrow"])  # still air in the maze
+
+    def test_a_depth_camera_s_occupied_cells_show_as_known_then(self):
+        with open(os.path.join(self.depth, "summary.json"), encoding="utf-8") as f:
+            summary = json.load(f)
+        page = os.path.join(self.depth, "report.html")
+        shown = []
+        for t in (0.5, 0.5 * summary["flight_time_s"], summary["flight_time_s"]):
+            result, console = selftest(page, t, self.profile)
+            self.assert_clean(result, console)
+            # the last snapshot (one a second) before the slider's time
+            self.assertLessEqual(result["occupied_snapshot_t"], t)
+            self.assertGreater(result["occupied_snapshot_t"], t - 1.1)
+            shown.append(result["occupied_boxes"])
+        # the map grows as the pillars are seen
+        self.assertLess(shown[0], shown[2])
+        self.assertGreater(shown[2], 50)
+        # a flight without a depth camera has none
+        result, _ = selftest(os.path.join(self.slow, "report.html"), 5.0, self.profile)
+        self.assertEqual(result["occupied_boxes"], 0)
 
     def test_a_sweep_has_one_page(self):
         result, console = selftest(os.path.join(self.sweep, "report.html"), 0, self.profile)
