@@ -185,7 +185,9 @@ void DepthCamera::AddNoise(DepthImage* image) {
       const double cos_axis = image->RayC(u, v).z();
       double depth = nearest_[k] * cos_axis;
       // drawn for every returning pixel, so that a frame's draws do not depend on the noise
-      const double error = normal(rng_), drop = uniform(rng_);
+      // (an exact camera draws nothing: its images are the same either way)
+      const bool draws = params_.noise > 0.0 || params_.dropout > 0.0;
+      const double error = draws ? normal(rng_) : 0.0, drop = draws ? uniform(rng_) : 1.0;
       if (drop < params_.dropout) {
         image->hit[k] = kDropped;
         continue;

@@ -41,9 +41,7 @@ OccupancyGrid::OccupancyGrid(const Aabb& bounds, const OccupancyParams& params, 
   ny_ = static_cast<int>(cells.y());
   nz_ = static_cast<int>(cells.z());
   const size_t n = static_cast<size_t>(total);
-  log_odds_.assign(n, 0.0f);
-  observed_.assign(n, 0);
-  stamp_.assign(n, 0);
+  cells_.assign(n, Cell());
 }
 
 bool OccupancyGrid::CellOf(const Vec3& p, int* ix, int* iy, int* iz) const {
@@ -66,19 +64,20 @@ Occupancy OccupancyGrid::At(const Vec3& p) const {
   int ix, iy, iz;
   if (!CellOf(p, &ix, &iy, &iz)) return Occupancy::kUnknown;
   const size_t k = static_cast<size_t>(Index(ix, iy, iz));
-  if (!observed_[k]) return Occupancy::kUnknown;
-  return log_odds_[k] > 0.0f ? Occupancy::kOccupied : Occupancy::kFree;
+  if (cells_[k].stamp == 0) return Occupancy::kUnknown;
+  return cells_[k].log_odds > 0.0f ? Occupancy::kOccupied : Occupancy::kFree;
 }
 
 void OccupancyGrid::Update(long index, float change) {
   const size_t k = static_cast<size_t>(index);
-  if (stamp_[k] == frame_) return;
-  stamp_[k] = frame_;
-  const bool was_occupied = observed_[k] && log_odds_[k] > 0.0f;
-  const bool was_free = observed_[k] && !was_occupied;
-  observed_[k] = 1;
-  log_odds_[k] = std::clamp(log_odds_[k] + change, kLowest, kHighest);
-  const bool occupied = log_odds_[k] > 0.0f;
+  Cell& cell = cells_[k];
+  if (cell.stamp == frame_) return;
+  const bool observed = cell.stamp != 0;
+  const bool was_occupied = observed && cell.log_odds > 0.0f;
+  const bool was_free = observed && !was_occupied;
+  cell.stamp = frame_;
+  cell.log_odds = std::clamp(cell.log_odds + change, kLowest, kHighest);
+  const bool occupied = cell.log_odds > 0.0f;
   occupied_ += static_cast<long>(occupied) - static_cast<long>(was_occupied);
   free_ += static_cast<long>(!occupied) - static_cast<long>(was_free);
   if (occupied && !was_occupied) occupied_cells_.insert(index);
@@ -131,51 +130,57 @@ int OccupancyGrid::Insert(const DepthImage& image, double range, const std::vect
     return hit >= 0 &&
            !(static_cast<size_t>(hit) < ignored.size() && ignored[static_cast<size_t>(hit)]);
   };
-  // a surface point, a millimetre on into the surface: the cell behind a face is the one it
-  // belongs to, whichever side the ray came from
-  const auto end = [&image](int u, int v) {
-    const Vec3 p = image.PointW(u, v);
-    return Vec3(p + 1e-3 * (p - image.origin_W).normalized());
-  };
-  // occupied first: a cell a ray ends in is not cleared by its neighbours' rays this frame
+  // each pixel's ray's end: a surface point a millimetre on into the surface (the cell behind a
+  // face is the one it belongs to, whichever side the ray came from), or the range
+  const size_t pixels = image.depth.size();
+  ends_.resize(pixels);
   for (int v = 0; v < image.height; ++v) {
     for (int u = 0; u < image.width; ++u) {
       const size_t k = static_cast<size_t>(v * image.width + u);
-      if (image.depth[k] <= 0.0f || !is_obstacle(image.hit[k])) continue;
-      int ix, iy, iz;
-      if (CellOf(end(u, v), &ix, &iy, &iz)) Update(Index(ix, iy, iz), kHit);
+      if (image.depth[k] > 0.0f) {
+        const Vec3 p = image.PointW(u, v);
+        ends_[k] = p + 1e-3 * (p - image.origin_W).normalized();
+      } else {
+        ends_[k] = image.origin_W + image.R_WC * image.RayC(u, v) * range;
+      }
     }
+  }
+  // occupied first: a cell a ray ends in is not cleared by its neighbours' rays this frame
+  for (size_t k = 0; k < pixels; ++k) {
+    if (image.depth[k] <= 0.0f || !is_obstacle(image.hit[k])) continue;
+    int ix, iy, iz;
+    if (CellOf(ends_[k], &ix, &iy, &iz)) Update(Index(ix, iy, iz), kHit);
   }
   // then the free space before each ray's end: one ray per end cell (OctoMap's `discretize`),
-  // the first pixel's, so that the many pixels on a near surface walk the same cells once
-  ends_.clear();
-  for (int v = 0; v < image.height; ++v) {
-    for (int u = 0; u < image.width; ++u) {
-      const size_t k = static_cast<size_t>(v * image.width + u);
-      const bool surface = image.depth[k] > 0.0f;
-      if (!surface && image.hit[k] != kNoReturn) continue;  // dropped: says nothing
-      const Vec3 p =
-          surface ? end(u, v) : Vec3(image.origin_W + image.R_WC * image.RayC(u, v) * range);
-      // an end beyond the grid by more than a cell is its own (rays to it differ too much)
-      int ix, iy, iz;
-      CellOf(p, &ix, &iy, &iz);  // clamped to the grid
-      const bool near_grid = (p.array() >= bounds_.min.array() - resolution_).all() &&
-                             (p.array() <= bounds_.max.array() + resolution_).all();
-      const long cell = near_grid ? Index(ix, iy, iz) : -1 - static_cast<long>(k);
-      ends_.push_back({2 * cell + (surface ? 0 : 1), surface, p});
-    }
+  // the first pixel's, so that the many pixels on a near surface walk the same cells once. Keys:
+  // 2 x the end's cell (+ 1 for a ray that hit nothing), above them one of its own for an end
+  // beyond the grid by more than a cell (rays to it differ too much); the pixel below them.
+  keys_.clear();
+  const std::uint64_t own = 2 * static_cast<std::uint64_t>(cells_.size());
+  for (size_t k = 0; k < pixels; ++k) {
+    const bool surface = image.depth[k] > 0.0f;
+    if (!surface && image.hit[k] != kNoReturn) continue;  // dropped: says nothing
+    const Vec3& p = ends_[k];
+    int ix, iy, iz;
+    CellOf(p, &ix, &iy, &iz);  // clamped to the grid
+    const bool near_grid = (p.array() >= bounds_.min.array() - resolution_).all() &&
+                           (p.array() <= bounds_.max.array() + resolution_).all();
+    const std::uint64_t key = near_grid ? 2 * static_cast<std::uint64_t>(Index(ix, iy, iz))
+                                        : own + 2 * static_cast<std::uint64_t>(k);
+    keys_.push_back(((key + (surface ? 0 : 1)) << kPixelBits) | k);
   }
-  std::stable_sort(ends_.begin(), ends_.end(),
-                   [](const RayEnd& a, const RayEnd& b) { return a.key < b.key; });
-  for (size_t i = 0; i < ends_.size(); ++i) {
-    if (i > 0 && ends_[i].key == ends_[i - 1].key) continue;
-    Clear(image.origin_W, ends_[i].p, !ends_[i].surface);
+  std::sort(keys_.begin(), keys_.end());
+  for (size_t i = 0; i < keys_.size(); ++i) {
+    const std::uint64_t key = keys_[i] >> kPixelBits;
+    if (i > 0 && key == keys_[i - 1] >> kPixelBits) continue;
+    const size_t k = static_cast<size_t>(keys_[i] & ((std::uint64_t{1} << kPixelBits) - 1));
+    Clear(image.origin_W, ends_[k], (key & 1) != 0);
   }
   return static_cast<int>(std::max(0L, occupied_ - before));
 }
 
 std::vector<Aabb> OccupancyGrid::OccupiedBoxes(bool columns) const {
-  const auto unknown = [this](long index) { return !observed_[static_cast<size_t>(index)]; };
+  const auto unknown = [this](long index) { return cells_[static_cast<size_t>(index)].stamp == 0; };
   // runs along z within a column (the set is sorted by index, z fastest), grown through unknown
   // cells with `columns` (overlapping runs of a column then join) ...
   std::map<std::tuple<long, int, int>, std::vector<int>> runs;  // (ix, z0, z1) -> the iy's

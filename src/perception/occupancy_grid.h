@@ -49,7 +49,7 @@ class OccupancyGrid {
   std::vector<Aabb> OccupiedBoxes(bool columns = false) const;
   long occupied_count() const { return occupied_; }
   long free_count() const { return free_; }
-  long cell_count() const { return static_cast<long>(log_odds_.size()); }
+  long cell_count() const { return static_cast<long>(cells_.size()); }
   double resolution() const { return resolution_; }
   Aabb CellBox(long index) const;
 
@@ -66,17 +66,16 @@ class OccupancyGrid {
   Aabb bounds_;
   double resolution_;
   int nx_ = 0, ny_ = 0, nz_ = 0;
-  std::vector<float> log_odds_;         // 0 and not observed: unknown
-  std::vector<std::uint8_t> observed_;  // 1 once any ray touched the cell
-  std::vector<std::uint32_t> stamp_;    // the frame that last changed the cell
-  std::uint32_t frame_ = 0;
-  std::set<long> occupied_cells_;  // sorted: OccupiedBoxes merges runs of it
-  struct RayEnd {
-    long key;      // 2 * the end's cell (negative: the ray's own), + 1 when it hit nothing
-    bool surface;  // it ended on a surface (else at the range)
-    Vec3 p;        // [m]
+  struct Cell {
+    float log_odds = 0.0f;    // 0 and never stamped: unknown
+    std::uint32_t stamp = 0;  // the frame that last changed it (0: no ray touched it yet)
   };
-  std::vector<RayEnd> ends_;  // this frame's rays to walk
+  std::vector<Cell> cells_;
+  std::uint32_t frame_ = 0;
+  std::set<long> occupied_cells_;        // sorted: OccupiedBoxes merges runs of it
+  static constexpr int kPixelBits = 24;  // a frame's pixels: fewer than 2^24 (4096 x 4096)
+  std::vector<Vec3> ends_;               // this frame's: each pixel's ray's end [m]
+  std::vector<std::uint64_t> keys_;      // ... its end cell's key, then the pixel
   long occupied_ = 0, free_ = 0;
 };
 
