@@ -274,14 +274,32 @@ TEST_CASE("depth: a box hidden behind another is not known until it is in the li
 }  // namespace aerobox
 
 namespace aerobox {
+namespace {
+
+// A 10 x 4 x 3 m room with a wall across it at x = 5 to 5.3, from y = 0 to `wall_end` [m],
+// unknown.
+Map WallRoom(double wall_end) {
+  Map map;
+  map.name = "wall room";
+  map.bounds = {Vec3(0, 0, 0), Vec3(10, 4, 3)};
+  map.boxes.push_back({{Vec3(5, 0, 0), Vec3(5.3, wall_end, 3)}, Vec3(1, 0, 0), "wall", 1});
+  return map;
+}
+
+// The room's replanner (a 3 m omnidirectional sensor) for a flight from `from` to `to` [m].
+Replanner WallRoomReplanner(const Map& map, const Vec3& from, const Vec3& to) {
+  SensingParams sensing;
+  sensing.range = 3.0;
+  return Replanner(map, {true}, CollisionParams{}, CollisionParams{Vec3(0.1, 0.1, 0.05), 0.05},
+                   PlannerConfig{}, GeneratorConfig{}, sensing, ReplanParams{}, {to}, {from, to},
+                   1);
+}
+
+}  // namespace
 
 TEST_CASE("a vehicle whose every stop ahead is blocked still brakes rather than fly on") {
   // a wall across the whole room, found 0.8 m ahead of a vehicle at 2 m/s: no path past it,
   // and no stop along the travel that keeps the trajectory's clearance from it
-  Map map;
-  map.name = "closed";
-  map.bounds = {Vec3(0, 0, 0), Vec3(10, 4, 3)};
-  map.boxes.push_back({{Vec3(5, 0, 0), Vec3(5.3, 4, 3)}, Vec3(1, 0, 0), "wall", 1});
   const Vec3 from(1, 2, 1.5), to(9, 2, 1.5);
   Reference straight;
   straight.duration = 4.0;
@@ -290,11 +308,7 @@ TEST_CASE("a vehicle whose every stop ahead is blocked still brakes rather than 
     if (derivative == kVelocity) return (to - from) / 4.0;
     return Vec3::Zero();
   };
-  SensingParams sensing;
-  sensing.range = 3.0;
-  GeneratorConfig generator;
-  Replanner replanner(map, {true}, CollisionParams{}, CollisionParams{Vec3(0.1, 0.1, 0.05), 0.05},
-                      PlannerConfig{}, generator, sensing, ReplanParams{}, {to}, {from, to}, 1);
+  Replanner replanner = WallRoomReplanner(WallRoom(4.0), from, to);
   State state;
   state.p_W = straight.evaluate(1.6, kPosition);  // x = 4.2
   state.v_W = straight.evaluate(1.6, kVelocity);
@@ -308,17 +322,9 @@ TEST_CASE("a vehicle whose every stop ahead is blocked still brakes rather than 
   CHECK(next->evaluate(next->duration, kPosition).x() > 4.2);
 }
 
-}  // namespace aerobox
-
-namespace aerobox {
-
 TEST_CASE("a vehicle at rest within the clearance of a box just found backs off and replans") {
   // a half wall found 2 cm from the body of a vehicle hovering before it: the trajectory's
   // clearance (0.05 m) no longer holds where it is, so no plan may start there
-  Map map;
-  map.name = "half wall";
-  map.bounds = {Vec3(0, 0, 0), Vec3(10, 4, 3)};
-  map.boxes.push_back({{Vec3(5, 0, 0), Vec3(5.3, 2.5, 3)}, Vec3(1, 0, 0), "wall", 1});
   const Vec3 from(4.93, 1, 1.5), to(9, 1, 1.5);
   Reference ahead;  // from rest, straight through the wall
   ahead.duration = 4.0;
@@ -328,10 +334,7 @@ TEST_CASE("a vehicle at rest within the clearance of a box just found backs off 
     if (derivative == kVelocity) return (to - from) * (6 * s - 6 * s * s) / 4.0;
     return Vec3::Zero();
   };
-  SensingParams sensing;
-  GeneratorConfig generator;
-  Replanner replanner(map, {true}, CollisionParams{}, CollisionParams{Vec3(0.1, 0.1, 0.05), 0.05},
-                      PlannerConfig{}, generator, sensing, ReplanParams{}, {to}, {from, to}, 1);
+  Replanner replanner = WallRoomReplanner(WallRoom(2.5), from, to);
   State state;
   state.p_W = from;
   const std::optional<Reference> next = replanner.Update(0.0, 0.0, state, 0, ahead);
