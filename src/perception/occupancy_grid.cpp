@@ -42,6 +42,8 @@ OccupancyGrid::OccupancyGrid(const Aabb& bounds, const OccupancyParams& params, 
   nz_ = static_cast<int>(cells.z());
   const size_t n = static_cast<size_t>(total);
   cells_.assign(n, Cell());
+  column_runs_.assign(static_cast<size_t>(nx_) * static_cast<size_t>(ny_), Runs());
+  column_dirty_.assign(column_runs_.size(), 0);
 }
 
 bool OccupancyGrid::CellOf(const Vec3& p, int* ix, int* iy, int* iz) const {
@@ -80,8 +82,12 @@ void OccupancyGrid::Update(long index, float change) {
   const bool occupied = cell.log_odds > 0.0f;
   occupied_ += static_cast<long>(occupied) - static_cast<long>(was_occupied);
   free_ += static_cast<long>(!occupied) - static_cast<long>(was_free);
-  if (occupied && !was_occupied) occupied_cells_.insert(index);
-  if (!occupied && was_occupied) occupied_cells_.erase(index);
+  if (observed && occupied == was_occupied) return;
+  const long column = index / nz_;
+  if (!column_dirty_[static_cast<size_t>(column)]) {
+    column_dirty_[static_cast<size_t>(column)] = 1;
+    dirty_columns_.push_back(column);
+  }
 }
 
 void OccupancyGrid::Clear(const Vec3& a, const Vec3& b, bool include_end) {
@@ -179,35 +185,59 @@ int OccupancyGrid::Insert(const DepthImage& image, double range, const std::vect
   return static_cast<int>(std::max(0L, occupied_ - before));
 }
 
-std::vector<Aabb> OccupancyGrid::OccupiedBoxes(bool columns) const {
-  const auto unknown = [this](long index) { return cells_[static_cast<size_t>(index)].stamp == 0; };
-  // runs along z within a column (the set is sorted by index, z fastest), grown through unknown
-  // cells with `columns` (overlapping runs of a column then join) ...
-  std::map<std::tuple<long, int, int>, std::vector<int>> runs;  // (ix, z0, z1) -> the iy's
-  long column = -1;
-  int z0 = 0, z1 = -1;
-  const auto flush = [&]() {
-    if (column >= 0) runs[{column / ny_, z0, z1}].push_back(static_cast<int>(column % ny_));
+OccupancyGrid::Runs OccupancyGrid::ColumnRuns(long column, bool columns) const {
+  const long base = column * nz_;
+  const auto known = [this, base](int z) {
+    return cells_[static_cast<size_t>(base + z)].stamp != 0;
   };
-  for (auto it = occupied_cells_.begin(); it != occupied_cells_.end();) {
-    const long first = *it;
-    long last = first;
-    for (++it; it != occupied_cells_.end() && *it == last + 1 && *it % nz_ != 0; ++it) last = *it;
-    int lo = static_cast<int>(first % nz_), hi = static_cast<int>(last % nz_);
+  const auto occupied = [this, base, &known](int z) {
+    return known(z) && cells_[static_cast<size_t>(base + z)].log_odds > 0.0f;
+  };
+  // runs of occupied cells, grown through unknown cells with `columns`; overlapping grown runs
+  // join
+  Runs runs;
+  for (int z = 0; z < nz_; ++z) {
+    if (!occupied(z)) continue;
+    int lo = z, hi = z;
+    while (hi + 1 < nz_ && occupied(hi + 1)) ++hi;
+    z = hi;
     if (columns) {
-      while (lo > 0 && unknown(first - (first % nz_ - lo) - 1)) --lo;
-      while (hi + 1 < nz_ && unknown(last + (hi - last % nz_) + 1)) ++hi;
+      while (lo > 0 && !known(lo - 1)) --lo;
+      while (hi + 1 < nz_ && !known(hi + 1)) ++hi;
     }
-    if (first / nz_ == column && lo <= z1 + 1) {
-      z1 = std::max(z1, hi);  // joins the column's run before it
-      continue;
+    if (!runs.empty() && lo <= runs.back().second + 1) {
+      runs.back().second = std::max(runs.back().second, hi);
+    } else {
+      runs.push_back({lo, hi});
     }
-    flush();
-    column = first / nz_;
-    z0 = lo;
-    z1 = hi;
   }
-  flush();
+  return runs;
+}
+
+std::vector<Aabb> OccupancyGrid::OccupiedBoxes(bool columns) const {
+  // the z-runs of each column (kept, redone for the columns that changed) ...
+  if (runs_grown_ != static_cast<int>(columns)) {
+    runs_grown_ = static_cast<int>(columns);
+    dirty_columns_.clear();
+    for (long c = 0; c < static_cast<long>(column_runs_.size()); ++c) dirty_columns_.push_back(c);
+  }
+  for (const long c : dirty_columns_) {
+    const size_t k = static_cast<size_t>(c);
+    column_dirty_[k] = 0;
+    column_runs_[k] = ColumnRuns(c, columns);
+    if (column_runs_[k].empty()) {
+      columns_with_runs_.erase(c);
+    } else {
+      columns_with_runs_.insert(c);
+    }
+  }
+  dirty_columns_.clear();
+  std::map<std::tuple<long, int, int>, std::vector<int>> runs;  // (ix, z0, z1) -> the iy's
+  for (const long c : columns_with_runs_) {
+    for (const auto& [z0, z1] : column_runs_[static_cast<size_t>(c)]) {
+      runs[{c / ny_, z0, z1}].push_back(static_cast<int>(c % ny_));
+    }
+  }
   // ... then runs of the same z-run along y, and runs of the same rectangle along x
   std::map<std::tuple<int, int, int, int>, std::vector<long>> slabs;  // (y0, y1, z0, z1) -> ix's
   for (const auto& [key, ys] : runs) {
