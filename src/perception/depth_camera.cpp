@@ -178,15 +178,15 @@ std::optional<DepthCamera::PixelRect> DepthCamera::Footprint(const DepthImage& i
 void DepthCamera::AddNoise(DepthImage* image) {
   std::normal_distribution<double> normal(0.0, 1.0);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  // drawn for every returning pixel, so that a frame's draws do not depend on the noise (an
+  // exact camera draws nothing: its images are the same either way)
+  const bool draws = params_.noise > 0.0 || params_.dropout > 0.0;
   for (int v = 0; v < image->height; ++v) {
     for (int u = 0; u < image->width; ++u) {
       const size_t k = static_cast<size_t>(v * image->width + u);
       if (image->hit[k] == kNoReturn) continue;
       const double cos_axis = image->RayC(u, v).z();
       double depth = nearest_[k] * cos_axis;
-      // drawn for every returning pixel, so that a frame's draws do not depend on the noise
-      // (an exact camera draws nothing: its images are the same either way)
-      const bool draws = params_.noise > 0.0 || params_.dropout > 0.0;
       const double error = draws ? normal(rng_) : 0.0, drop = draws ? uniform(rng_) : 1.0;
       if (drop < params_.dropout) {
         image->hit[k] = kDropped;
