@@ -156,7 +156,6 @@ void ReportOutputs::OnFlightEnd(const Simulation& sim, const FlightResult& resul
 void ReportOutputs::OnDepthFrame(double t, const DepthImage&, const OccupancyGrid& map) {
   if (!occupied_.empty() && t < occupied_.back().first + kMapPeriod - 1e-9) return;
   occupied_.push_back({t, map.OccupiedBoxes(setup_.sensing.map.columns)});
-  map_resolution_ = map.resolution();
 }
 
 void ReportOutputs::OnDiscovery(const std::vector<double>& revealed_at,
@@ -186,7 +185,7 @@ std::string ReportOutputs::Write(const std::string& summary_json, const std::str
                      {"bounds", Json::array({Point(map.bounds.min), Point(map.bounds.max)})},
                      {"boxes", Boxes(setup_, revealed_at_)},
                      {"replans", Replans(replans_)},
-                     {"occupancy", OccupancySnapshots(occupied_, map_resolution_)},
+                     {"occupancy", OccupancySnapshots(occupied_, setup_.sensing.map.resolution)},
                      {"vehicle",
                       {{"size", Point(setup_.vehicle.collision_size)},
                        {"max_thrust", Number(setup_.vehicle.MaxRotorThrust())}}},

@@ -46,7 +46,6 @@ class ReportOutputs : public MissionObserver {
   std::vector<ReplanEvent> replans_;
   // the occupancy map's occupied boxes at times [s] a second apart: (t, the boxes)
   std::vector<std::pair<double, std::vector<Aabb>>> occupied_;
-  double map_resolution_ = 0.0;  // [m]
   bool flown_ = false;
   FlightResult result_;
   Vec3 end_position_ = Vec3::Zero();
