@@ -11,6 +11,7 @@
 
 #include "common/state.h"
 #include "common/types.h"
+#include "sim/vehicle_physics.h"
 
 namespace aerobox {
 
@@ -23,27 +24,7 @@ struct MjDataDeleter {
 using MjModelPtr = std::unique_ptr<mjModel, MjModelDeleter>;
 using MjDataPtr = std::unique_ptr<mjData, MjDataDeleter>;
 
-// A contact between the vehicle and anything else (an obstacle, the floor).
-struct VehicleContact {
-  std::string other_geom;  // name of the geom the vehicle touches ("" when unnamed)
-  Vec3 position_W;         // contact point [m]
-  double distance = 0.0;   // signed distance [m]; negative is penetration
-};
-
-// Changes to the vehicle's physics, as factors of the values the simulation was made with (1
-// changes nothing): what domain randomisation varies from one episode to the next while the
-// controller keeps the nominal vehicle. Per rotor: the thrust it produces per newton commanded,
-// its reaction moment, its motor lag's time constant and its largest command.
-struct VehicleScaling {
-  double mass = 1.0;
-  Vec3 inertia = Vec3::Ones();  // per principal axis
-  Vec4 thrust = Vec4::Ones();
-  Vec4 yaw_moment = Vec4::Ones();
-  Vec4 motor_lag = Vec4::Ones();
-  Vec4 rotor_limit = Vec4::Ones();
-};
-
-class Simulation {
+class Simulation : public VehiclePhysics {
  public:
   // Loads MJCF text; `source` names it in messages. Throws InputError with MuJoCo's message
   // when it does not load, or when it lacks the vehicle's body, rotor actuators or joint.
@@ -54,51 +35,51 @@ class Simulation {
   // Applies the four rotor thrust commands [N] (rotor order in vehicle/quad_params.h) and
   // advances one time step. Commands outside [0, max] are clamped by the actuators' ctrlrange;
   // the produced thrust follows the command with the motor lag.
-  void Step(const Vec4& thrust_commands);
+  void Step(const Vec4& thrust_commands) override;
 
   // A force [N] and torque [N m] in the world frame on the vehicle at its centre of mass (wind
   // and drag), applied by every Step until set again (MuJoCo's xfrc_applied).
-  void SetExternalWrench(const Vec3& force_W, const Vec3& torque_W);
+  void SetExternalWrench(const Vec3& force_W, const Vec3& torque_W) override;
 
   // Thrust each rotor produces now [N]: the motor-lag state.
-  Vec4 RotorThrusts() const;
+  Vec4 RotorThrusts() const override;
   // Sets the produced thrusts and the commands (e.g. start in hover without spin-up).
-  void SetRotorThrusts(const Vec4& thrusts);
+  void SetRotorThrusts(const Vec4& thrusts) override;
   // Sets the produced thrusts only (the motor-lag state; e.g. rotor noise): the next Step
   // starts from them.
-  void SetProducedThrusts(const Vec4& thrusts);
+  void SetProducedThrusts(const Vec4& thrusts) override;
 
   // A new simulation of a copy of this one's model, with fresh data (as loaded): many worlds of
   // one scene without parsing it again.
   Simulation Clone() const;
   // Back to the data as loaded: time 0, the model's initial state, no contacts, no warnings.
-  void ResetData();
+  void ResetData() override;
 
   // Sets the vehicle's physics to the made values times `scaling` (not cumulative), and
   // resets the data as ResetData does (MuJoCo's constants follow the new mass: mj_setConst).
-  void ScaleVehicle(const VehicleScaling& scaling);
+  void ScaleVehicle(const VehicleScaling& scaling) override;
 
-  State VehicleState() const;
+  State VehicleState() const override;
   // Places the vehicle and recomputes derived quantities (mj_forward).
-  void SetVehicleState(const State& state);
+  void SetVehicleState(const State& state) override;
 
   // Accelerations from the last step or SetVehicleState: linear of the body origin in the
   // world frame [m/s^2] and angular in the body frame [rad/s^2].
-  Vec3 LinearAcceleration_W() const;
-  Vec3 AngularAcceleration_B() const;
+  Vec3 LinearAcceleration_W() const override;
+  Vec3 AngularAcceleration_B() const override;
 
   // MuJoCo's warnings (an engine reset after a bad acceleration, a full contact buffer, ...)
   // raised by this simulation since the last call, in MuJoCo's words; "" when there were none.
   // MuJoCo counts them in mjData; a flight that meets one cannot be trusted.
-  std::string TakeNewWarnings();
+  std::string TakeNewWarnings() override;
 
   // Contacts the vehicle has in the current state.
-  std::vector<VehicleContact> VehicleContacts() const;
+  std::vector<VehicleContact> VehicleContacts() const override;
   // Whether it has any (VehicleContacts without their names: cheap enough for every step).
-  bool VehicleTouches() const;
+  bool VehicleTouches() const override;
 
-  double time() const { return data_->time; }
-  double timestep() const { return model_->opt.timestep; }
+  double time() const override { return data_->time; }
+  double timestep() const override { return model_->opt.timestep; }
   const mjModel* model() const { return model_.get(); }
   const mjData* data() const { return data_.get(); }
   // For renderers only: MuJoCo's visual API takes non-const pointers (mjv_updateScene), and the
