@@ -62,7 +62,7 @@ double TimeEnvironment(const EnvParams& params, int n, int threads, long steps,
   for (long s = 0; s < steps; ++s) {
     ThrowIfStopRequested("timing the learning environments");
     for (int i = 0; i < n; ++i) {
-      states->push_back(StateOf(batch.world(i).sim(), terminated[i] || truncated[i]));
+      states->push_back(StateOf(batch.Showing(i), terminated[i] || truncated[i]));
     }
     const auto begin = Clock::now();  // the recording is not timed
     batch.Step(actions.data(), obs.data(), rewards.data(), terminated.data(), truncated.data(),

@@ -6,30 +6,57 @@
 #include "common/number_format.h"
 #include "map/map.h"
 #include "scene/scene_mjcf.h"
+#include "sim/rigid_body.h"
 
 namespace aerobox {
 
 std::string EnvSceneXml(const EnvParams& params, const Map& map) {
   SceneOptions options;
   options.vehicle_position = map.bounds.Center();
+  options.timestep = 1.0 / params.physics_rate;
   options.offscreen_width = 640;
   options.offscreen_height = 480;
   return BuildSceneMjcf(map, params.Vehicle(), options);
 }
 
+namespace {
+
+EnvParams Validated(const EnvParams& params) {
+  params.Validate();
+  return params;
+}
+
+}  // namespace
+
 EnvBatch::EnvBatch(const EnvParams& params, int worlds, int threads)
-    : params_(params), pool_(std::max(1, std::min(threads, worlds))) {
+    : params_(Validated(params)),
+      map_(FindEnvTask(params_.task).map(params_)),
+      scene_(Simulation::FromXml(EnvSceneXml(params_, map_), "env")),
+      pool_(std::max(1, std::min(threads, worlds))) {
   if (worlds < 1)
     throw std::invalid_argument("EnvBatch: at least one world, got " + std::to_string(worlds));
-  params_.Validate();
-  map_ = FindEnvTask(params_.task).map(params_);
   observation_size_ = params_.ObservationSize();
   term_count_ = static_cast<int>(params_.RewardTermNames().size());
-  const Simulation first = Simulation::FromXml(EnvSceneXml(params_, map_), "env");
+  std::optional<RigidModel> rigid;
+  if (params_.backend == "rigid") rigid = RigidModel::Of(scene_);
   for (int i = 0; i < worlds; ++i) {
-    worlds_.push_back(std::make_unique<EnvWorld>(params_, first.Clone(), map_));
+    std::unique_ptr<VehiclePhysics> physics;
+    if (rigid) {
+      physics = std::make_unique<RigidBody>(*rigid);
+    } else {
+      physics = std::make_unique<Simulation>(scene_.Clone());
+    }
+    worlds_.push_back(std::make_unique<EnvWorld>(params_, std::move(physics), map_));
   }
   ended_.assign(static_cast<size_t>(worlds), 0);
+}
+
+Simulation& EnvBatch::Showing(int i) {
+  VehiclePhysics& physics = world(i).physics();
+  if (auto* own = dynamic_cast<Simulation*>(&physics)) return *own;
+  scene_.SetVehicleState(physics.VehicleState());
+  scene_.SetProducedThrusts(physics.RotorThrusts());
+  return scene_;
 }
 
 void EnvBatch::Reset(const std::vector<std::optional<std::uint64_t>>& seeds, float* observations,

@@ -13,6 +13,7 @@
 #include "common/worker_pool.h"
 #include "envs/env_params.h"
 #include "envs/env_world.h"
+#include "sim/simulation.h"
 
 namespace aerobox {
 
@@ -43,13 +44,17 @@ class EnvBatch {
             std::uint8_t* truncated, double* terms);
 
   EnvWorld& world(int i) { return *worlds_[static_cast<size_t>(i)]; }
+  // MuJoCo's scene showing world i as it is now (to render it): the world's own simulation,
+  // or with the rigid backend one shared simulation placed in the world's state.
+  Simulation& Showing(int i);
   int observation_size() const { return observation_size_; }
   int term_count() const { return term_count_; }
   const Map& map() const { return map_; }
 
  private:
   EnvParams params_;
-  Map map_;  // the task kind's, which every world flies in
+  Map map_;           // the task kind's, which every world flies in
+  Simulation scene_;  // MuJoCo's model of it, as loaded: the worlds' template
   int observation_size_, term_count_;
   std::vector<std::unique_ptr<EnvWorld>> worlds_;
   std::vector<std::uint8_t> ended_;  // the episode ended at the last step: reset at the next

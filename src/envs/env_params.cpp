@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/number_format.h"
 #include "envs/env_task.h"
 
 namespace aerobox {
@@ -13,12 +14,18 @@ void EnvParams::Describe(Archive& a) {
             "navigate: reach a goal through a map of boxes"},
            &task, EnvTaskNames());
   a.Choice({"vehicle", "", "a built-in vehicle"}, &vehicle, {"crazyflie", "tello"});
+  a.Choice({"backend", "",
+            "the physics: MuJoCo, or the rigid body integrated as MuJoCo integrates it (faster; "
+            "box contacts end the episode as on MuJoCo)"},
+           &backend, {"mujoco", "rigid"});
   a.Choice({"action", "", "what the action commands, each component in [-1, 1]"}, &action,
            {"thrusts", "ctbm", "ctbr", "ctatt", "velocity"});
   a.Choice({"attitude", "", "the attitude in the observation: R_WB row by row, or w, x, y, z"},
            &attitude, {"matrix", "quaternion"});
-  a.Number({"control_rate", "Hz", "steps per second; must divide the 1000 Hz physics"},
-           &control_rate, 1, 1000);
+  a.Number({"control_rate", "Hz", "steps per second; must divide physics_rate"}, &control_rate, 1,
+           1000);
+  a.Number({"physics_rate", "Hz", "physics steps per second (the inner loops run at it)"},
+           &physics_rate, 50, 10000);
   a.Number({"episode_time", "s", "then the episode is truncated"}, &episode_time, 0.01, 3600);
   a.Vector({"target", "m", "the point to reach and hold (world ENU)"}, &target, -1e3, 1e3);
   a.Number({"start_radius", "m", "the start is uniform in this ball around the target"},
@@ -98,11 +105,11 @@ void EnvParams::Describe(Archive& a) {
 
 void EnvParams::Validate() const {
   ValidateFields(*this, "env");
-  const double steps = 1000.0 / control_rate;
-  if (std::abs(steps - std::round(steps)) > 1e-9) {
-    throw std::invalid_argument("env.control_rate " + std::to_string(control_rate) +
-                                " Hz must divide the 1000 Hz physics (1000, 500, 250, 200, "
-                                "100, 50 ...)");
+  const double steps = physics_rate / control_rate;
+  if (std::abs(steps - std::round(steps)) > 1e-9 || steps < 0.5) {
+    throw std::invalid_argument("env.control_rate " + FormatNumber(control_rate) +
+                                " Hz must divide env.physics_rate " + FormatNumber(physics_rate) +
+                                " Hz (at 1000 Hz: 1000, 500, 250, 200, 100, 50 ...)");
   }
   if ((depth_width > 0) != (depth_height > 0)) {
     throw std::invalid_argument(

@@ -19,6 +19,9 @@ struct EnvParams {
   // (env_task.h).
   std::string task = "hover";
   std::string vehicle = "crazyflie";  // a built-in vehicle (vehicle/quad_params.h)
+  // The physics: "mujoco" (MuJoCo 2.2, the reference), or "rigid" (the vehicle as a lone rigid
+  // body integrated as MuJoCo integrates it, with exact box contacts: sim/rigid_body.h).
+  std::string backend = "mujoco";
   // What the action commands, each component in [-1, 1] (docs/learning.md gives the scaling):
   // "thrusts" (four rotor thrusts), "ctbm" (collective thrust and body moments), "ctbr"
   // (collective thrust and body rates), "ctatt" (collective thrust and roll, pitch, yaw),
@@ -28,7 +31,8 @@ struct EnvParams {
   // The attitude in the observation: "matrix" (R_WB, row by row) or "quaternion" (w, x, y, z,
   // with w >= 0).
   std::string attitude = "matrix";
-  double control_rate = 100.0;    // [Hz] one step(); must divide the 1000 Hz physics
+  double control_rate = 100.0;    // [Hz] one step(); must divide physics_rate
+  double physics_rate = 1000.0;   // [Hz] the physics' steps (the inner loops run at it)
   double episode_time = 10.0;     // [s] then truncated
   Vec3 target = Vec3(0, 0, 1.5);  // [m] world ENU
   double start_radius = 1.0;      // [m] the start is uniform in this ball around the target

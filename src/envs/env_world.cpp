@@ -30,15 +30,15 @@ PositionControlParams VelocityLoop(const EnvParams& params) {
 
 }  // namespace
 
-EnvWorld::EnvWorld(const EnvParams& params, Simulation sim, const Map& map)
+EnvWorld::EnvWorld(const EnvParams& params, std::unique_ptr<VehiclePhysics> physics, const Map& map)
     : params_(params),
       vehicle_(params.Vehicle()),
-      sim_(std::move(sim)),
+      physics_(std::move(physics)),
       task_(FindEnvTask(params.task).make(params, vehicle_, map)),
       velocity_(params.action == "velocity"),
       level_(LevelOf(params.action)),
       velocity_loop_(VelocityLoop(params), vehicle_.mass),
-      steps_per_control_(std::lround(1.0 / (params.control_rate * sim_.timestep()))) {
+      steps_per_control_(std::lround(1.0 / (params.control_rate * physics_->timestep()))) {
   params_.Validate();
   random_.Seed(StreamSeed(1, SeedStream::kEnvironment));
   loop_.vehicle = &vehicle_;
@@ -62,7 +62,7 @@ void EnvWorld::Vary(std::uint64_t seed) {
     s.motor_lag[i] = factor(params_.vary_motor_lag);
     s.rotor_limit[i] = factor(params_.vary_rotor_limit);
   }
-  if (params_.Varies()) sim_.ScaleVehicle(s);
+  if (params_.Varies()) physics_->ScaleVehicle(s);
   const double heading = r.Uniform(-kPi, kPi);
   loop_.wind.mean =
       r.Uniform(0.0, params_.wind_speed) * Vec3(std::cos(heading), std::sin(heading), 0.0);
@@ -91,14 +91,14 @@ void EnvWorld::Reset(std::optional<std::uint64_t> seed, float* observation,
   if (seed) random_.Seed(StreamSeed(*seed, SeedStream::kEnvironment));
   const State start = task_->Begin(random_, options);
   loop_.seed = random_.Next();
-  sim_.ResetData();
+  physics_->ResetData();
   Vary(loop_.seed);  // the episode's vehicle (its scaling resets the data too) and wind
-  sim_.SetVehicleState(start);
-  sim_.SetRotorThrusts(Vec4::Constant(vehicle_.HoverThrustPerRotor()));
-  world_.emplace(loop_, &sim_);
+  physics_->SetVehicleState(start);
+  physics_->SetRotorThrusts(Vec4::Constant(vehicle_.HoverThrustPerRotor()));
+  world_.emplace(loop_, physics_.get());
   velocity_loop_.Reset();
   t_ = 0.0;
-  state_ = sim_.VehicleState();
+  state_ = physics_->VehicleState();
   seen_ = world_->Seen(state_);
   last_action_.fill(0.0);
   Observe(observation);
@@ -144,7 +144,7 @@ EnvStep EnvWorld::Step(const double* action, float* observation) {
   for (long k = 0; k < steps_per_control_ && !touched; ++k) {
     world_->Command(command, world_->Seen(truth));
     truth = world_->Step(truth);
-    touched = sim_.VehicleTouches();
+    touched = physics_->VehicleTouches();
   }
   world_->EndControlPeriod();
   t_ += 1.0 / params_.control_rate;
@@ -153,7 +153,7 @@ EnvStep EnvWorld::Step(const double* action, float* observation) {
   const bool finite = state_.AllFinite() && seen_.AllFinite();
   TaskScore score = task_->Score(t_, state_, action);
   EnvStep out;
-  out.terminated = touched || !finite || score.ended || !sim_.TakeNewWarnings().empty();
+  out.terminated = touched || !finite || score.ended || !physics_->TakeNewWarnings().empty();
   out.truncated = !out.terminated && t_ >= params_.episode_time - 1e-9;
   out.terms = std::move(score.terms);
   for (double& term : out.terms) {

@@ -1,4 +1,5 @@
-// One world of a learning environment: its own MuJoCo data, the vehicle's world below the
+// One world of a learning environment: its own physics (MuJoCo's data, or the rigid body), the
+// vehicle's world below the
 // action (mission/flight_parts.h: the inner loops at the physics rate), and the task
 // (env_task.h): a seeded random start, the observation, the reward and how an episode ends.
 // Worlds share nothing, so a batch (env_batch.h) steps many in threads and each gives what it
@@ -17,7 +18,7 @@
 #include "envs/env_task.h"
 #include "mission/flight.h"
 #include "mission/flight_parts.h"
-#include "sim/simulation.h"
+#include "sim/vehicle_physics.h"
 
 namespace aerobox {
 
@@ -31,9 +32,9 @@ struct EnvStep {
 
 class EnvWorld {
  public:
-  // `sim`: this world's own simulation of the environment's scene, made from `map` (the task
+  // `physics`: this world's own physics of the environment's scene, made from `map` (the task
   // kind's). Throws std::invalid_argument for bad parameters.
-  EnvWorld(const EnvParams& params, Simulation sim, const Map& map);
+  EnvWorld(const EnvParams& params, std::unique_ptr<VehiclePhysics> physics, const Map& map);
 
   // A new episode from a random start, from the world's stream seeded with `seed` when given
   // (else going on from the last), with reset's options. Writes the observation
@@ -51,7 +52,7 @@ class EnvWorld {
   const State& seen() const { return seen_; }    // the observation's: with sensors, the estimate
   const EnvTask& task() const { return *task_; }
   const VehicleWorld& vehicle_world() const { return *world_; }  // after a reset
-  Simulation& sim() { return sim_; }
+  VehiclePhysics& physics() { return *physics_; }
 
  private:
   void Observe(float* observation) const;
@@ -60,7 +61,7 @@ class EnvWorld {
 
   EnvParams params_;
   QuadParams vehicle_;
-  Simulation sim_;
+  std::unique_ptr<VehiclePhysics> physics_;
   std::unique_ptr<EnvTask> task_;
   FlightLoop loop_;
   std::optional<VehicleWorld> world_;

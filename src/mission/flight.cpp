@@ -228,7 +228,7 @@ class FlightRun {
     ++result_.steps;
     // a warning means MuJoCo changed or distrusts the state (it resets the data after a bad
     // acceleration): nothing after it can be trusted
-    Simulation& sim = world_->sim();
+    VehiclePhysics& sim = world_->sim();
     result_.message = sim.TakeNewWarnings();
     if (!result_.message.empty()) return End(FlightStatus::kSimulationWarning);
     const std::vector<VehicleContact> contacts = sim.VehicleContacts();

@@ -104,7 +104,7 @@ Air::Air(const FlightLoop& loop, const Vec3& p_W)
   enabled_ = field_.has_value() || source_ || aero_.Enabled();
 }
 
-void Air::BeforeStep(double t, double step, const State& state, Simulation* sim) {
+void Air::BeforeStep(double t, double step, const State& state, VehiclePhysics* sim) {
   if (!enabled_) return;
   // the wind where the vehicle is, and the drag it causes, held over the step
   if (source_) {
@@ -116,7 +116,7 @@ void Air::BeforeStep(double t, double step, const State& state, Simulation* sim)
   sim->SetExternalWrench(wrench_.force_W, wrench_.torque_W);
 }
 
-void Air::Clear(Simulation* sim) const {
+void Air::Clear(VehiclePhysics* sim) const {
   if (enabled_) sim->SetExternalWrench(Vec3::Zero(), Vec3::Zero());
 }
 
@@ -125,7 +125,7 @@ MotorNoise::MotorNoise(const QuadParams& vehicle, std::uint64_t seed)
       sigma_(vehicle.motor_noise),
       rng_(StreamSeed(seed, SeedStream::kMotorNoise)) {}
 
-void MotorNoise::Apply(Simulation* sim) {
+void MotorNoise::Apply(VehiclePhysics* sim) {
   if (!enabled()) return;
   const double low = vehicle_->RotorSpeedFor(vehicle_->MinRotorThrust());
   const double high = vehicle_->RotorSpeedFor(vehicle_->MaxRotorThrust());
@@ -140,7 +140,7 @@ void MotorNoise::Apply(Simulation* sim) {
 namespace {
 
 // The physics step [s], once the world's parameters are checked against it.
-double CheckedStep(const FlightLoop& loop, const Simulation& sim) {
+double CheckedStep(const FlightLoop& loop, const VehiclePhysics& sim) {
   if (loop.vehicle == nullptr) throw std::invalid_argument("VehicleWorld: no vehicle");
   loop.wind.Validate();
   loop.sensors.Validate(sim.timestep());
@@ -149,7 +149,7 @@ double CheckedStep(const FlightLoop& loop, const Simulation& sim) {
 
 }  // namespace
 
-VehicleWorld::VehicleWorld(const FlightLoop& loop, Simulation* sim)
+VehicleWorld::VehicleWorld(const FlightLoop& loop, VehiclePhysics* sim)
     : sim_(sim),
       step_(CheckedStep(loop, *sim)),
       t0_(sim->time()),

@@ -18,7 +18,7 @@
 #include "disturbance/wind.h"
 #include "estimation/sensing.h"
 #include "mission/flight.h"
-#include "sim/simulation.h"
+#include "sim/vehicle_physics.h"
 
 namespace aerobox {
 
@@ -84,9 +84,9 @@ class Air {
 
   bool enabled() const { return enabled_; }
   // Before the physics step from `state` at flight time `t` [s] of `step` [s].
-  void BeforeStep(double t, double step, const State& state, Simulation* sim);
+  void BeforeStep(double t, double step, const State& state, VehiclePhysics* sim);
   // Takes the wrench off the simulation (at the flight's end).
-  void Clear(Simulation* sim) const;
+  void Clear(VehiclePhysics* sim) const;
   const Vec3& wind() const { return wind_W_; }  // [m/s] at the vehicle
   const Wrench& wrench() const { return wrench_; }
 
@@ -109,7 +109,7 @@ class MotorNoise {
   MotorNoise(const QuadParams& vehicle, std::uint64_t seed);
   bool enabled() const { return sigma_ > 0.0; }
   // At a control period's end: perturbs the produced thrusts.
-  void Apply(Simulation* sim);
+  void Apply(VehiclePhysics* sim);
 
  private:
   const QuadParams* vehicle_;
@@ -127,7 +127,7 @@ class VehicleWorld {
  public:
   // From `loop`'s vehicle, inner loops, wind, drag, sensors, seed and floor, around `sim` (which
   // must outlive it) as it is now. Throws std::invalid_argument for bad parameters.
-  VehicleWorld(const FlightLoop& loop, Simulation* sim);
+  VehicleWorld(const FlightLoop& loop, VehiclePhysics* sim);
 
   double time() const { return sim_->time() - t0_; }  // [s] since the world was made
   double step() const { return step_; }               // [s] of one physics step
@@ -153,10 +153,10 @@ class VehicleWorld {
   const InnerOutput& inner() const { return inner_out_; }
   const Air& air() const { return air_; }
   const SensorSuite* sensing() const { return sensing_ ? &*sensing_ : nullptr; }
-  Simulation& sim() const { return *sim_; }
+  VehiclePhysics& sim() const { return *sim_; }
 
  private:
-  Simulation* sim_;
+  VehiclePhysics* sim_;
   double step_;  // [s] physics
   double t0_;    // [s] the simulation's time when the world was made
   InnerLoops inner_;

@@ -99,11 +99,11 @@ class EnvCore {
   py::array_t<std::uint8_t> Render(int i, int width, int height) {
     if (i < 0 || i >= size())
       throw py::index_error(who_ + ": render: no world " + std::to_string(i));
-    if (!renderer_ || rendered_ != i) {
+    Simulation& shown = batch_->Showing(i);  // with the rigid backend, one shared scene
+    if (!renderer_ || rendered_ != &shown) {
       renderer_.reset();
-      renderer_ = std::make_unique<Renderer>(&batch_->world(i).sim(),
-                                             RenderSettings(width, height, Quality::kFast));
-      rendered_ = i;
+      renderer_ = std::make_unique<Renderer>(&shown, RenderSettings(width, height, Quality::kFast));
+      rendered_ = &shown;
     }
     Overlay overlay;
     EnvWorld& world = batch_->world(i);
@@ -163,7 +163,7 @@ class EnvCore {
   std::string who_;
   std::unique_ptr<EnvBatch> batch_;
   std::unique_ptr<Renderer> renderer_;
-  int rendered_ = -1;
+  const Simulation* rendered_ = nullptr;
 };
 
 // The parameters' reference (key, unit, default, range, meaning), for the documentation.

@@ -3,6 +3,7 @@
 // ends are those its parameters say.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -55,6 +56,30 @@ TEST_CASE("the number of threads changes nothing") {
   int ended = 0;
   for (std::uint8_t e : one.ends) ended += e != 0;
   CHECK(ended >= 5);  // episodes ended and the worlds were reset on the next step
+}
+
+TEST_CASE("the rigid backend: threads and the batch's size change nothing") {
+  EnvParams rigid = Short();
+  rigid.backend = "rigid";
+  const Rows one = Fly(rigid, 7, 1, 60), two = Fly(rigid, 7, 2, 60), three = Fly(rigid, 3, 2, 60);
+  CHECK(one.obs == two.obs);
+  CHECK(one.rewards == two.rewards);
+  CHECK(one.ends == two.ends);
+  // the first 3 worlds of 7 are the 3 worlds of a batch of 3 (seeded alike)
+  const size_t d = static_cast<size_t>(rigid.ObservationSize());
+  for (size_t s = 0; s < 60; ++s) {
+    CHECK(std::equal(three.obs.begin() + static_cast<long>(s * 3 * d),
+                     three.obs.begin() + static_cast<long>((s + 1) * 3 * d),
+                     one.obs.begin() + static_cast<long>(s * 7 * d)));
+  }
+  // and the rigid backend's worlds fly as MuJoCo's (the same seeds and actions)
+  const Rows mujoco = Fly(Short(), 7, 2, 60);
+  CHECK(mujoco.ends == one.ends);
+  double largest = 0.0;
+  for (size_t i = 0; i < one.obs.size(); ++i) {
+    largest = std::max(largest, static_cast<double>(std::abs(one.obs[i] - mujoco.obs[i])));
+  }
+  CHECK(largest < 1e-4);  // float observations of states within rounding
 }
 
 TEST_CASE("a bad action is refused before any world steps") {
@@ -126,6 +151,14 @@ TEST_CASE("bad parameters name the field") {
   EnvParams params;
   params.control_rate = 300;
   CHECK_THROWS_WITH_AS(EnvBatch(params, 1, 1), doctest::Contains("control_rate 300"),
+                       std::invalid_argument);
+  params = EnvParams();
+  params.backend = "bullet";
+  CHECK_THROWS_WITH_AS(EnvBatch(params, 1, 1), doctest::Contains("env.backend"),
+                       std::invalid_argument);
+  params = EnvParams();
+  params.physics_rate = 450;
+  CHECK_THROWS_WITH_AS(EnvBatch(params, 1, 1), doctest::Contains("physics_rate 450"),
                        std::invalid_argument);
   params = EnvParams();
   params.action = "motors";

@@ -55,6 +55,15 @@ class Checker(unittest.TestCase):
                          ["ref_vx", "ref_vy", "ref_vz", "ref_ax", "ref_ay", "ref_az"])
         self.assertEqual(track.observation_names[-3:], ["ref2_ax", "ref2_ay", "ref2_az"])
 
+    def test_gymnasium_s_checker_passes_every_id_on_the_rigid_backend(self):
+        for env_id in (aerobox.envs.HOVER, aerobox.envs.TRACK, aerobox.envs.NAVIGATE):
+            with self.subTest(env_id=env_id):
+                env = gym.make(env_id, backend="rigid", render_mode="rgb_array", width=80,
+                               height=60)
+                quiet_check(env.unwrapped)
+                env.reset(seed=2)
+                self.assertEqual(env.render().shape, (60, 80, 3))
+
     def test_the_observation_is_what_the_docs_say(self):
         env = HoverEnv(attitude="quaternion", target=[1.0, 2.0, 3.0])
         obs, _ = env.reset(seed=4)
@@ -155,6 +164,28 @@ class Vector(unittest.TestCase):
                         np.testing.assert_array_equal(mine[0], theirs[0][i],
                                                       err_msg=f"world {i} step {k}")
                         self.assertEqual(mine[1], theirs[1][i])
+
+    def test_the_rigid_backend_s_worlds_are_lone_environments_and_fly_as_mujoco_s(self):
+        n, seed, steps = 4, 31, 160
+        actions = self.actions(n, steps)
+        params = dict(self.PARAMS, backend="rigid")
+        _, rows = self.run_vector(n, seed, actions, threads=2, params=params)
+        self.assertTrue(any(np.any(r[2]) for r in rows))  # some crashed on the floor
+        for i in range(n):
+            single = run_single(seed + i, actions[:, i], **params)
+            for k, (mine, theirs) in enumerate(zip(single, rows)):
+                np.testing.assert_array_equal(mine[0], theirs[0][i], err_msg=f"world {i} step {k}")
+                self.assertEqual((mine[2], mine[3]), (theirs[2][i], theirs[3][i]))
+        # MuJoCo's worlds from the same seeds under the same actions: the same episodes, ending
+        # at the same steps (the step that touches the floor ends both; MuJoCo's has pushed back
+        # in it, so its last observation differs)
+        _, reference = self.run_vector(n, seed, actions, threads=1)
+        for k, (mine, theirs) in enumerate(zip(rows, reference)):
+            np.testing.assert_array_equal(mine[2], theirs[2], err_msg=f"step {k}")
+            np.testing.assert_array_equal(mine[3], theirs[3], err_msg=f"step {k}")
+            flying = ~mine[2]
+            np.testing.assert_allclose(mine[0][flying], theirs[0][flying], atol=1e-4,
+                                       err_msg=f"step {k}")
 
     def test_the_number_of_threads_and_a_busy_machine_change_nothing(self):
         n, steps = 9, 120
@@ -282,6 +313,8 @@ class BadInputs(unittest.TestCase):
             (dict(action="motors"), ValueError, r"argument 'action' = 'motors': expected"),
             (dict(target=[0, 0]), ValueError, r"argument 'target' .* expected three numbers"),
             (dict(control_rate=300), ValueError, r"control_rate 300.* must divide"),
+            (dict(backend="bullet"), ValueError, r"argument 'backend' = 'bullet': expected "
+                                                 r"'mujoco' or 'rigid'"),
             (dict(target=[0, 0, 0.5]), ValueError, r"target's height"),
             (dict(task="navigate", map="no/such.json"), ValueError, r"map 'no/such.json'"),
             (dict(task="fly"), ValueError, r"argument 'task' = 'fly': expected 'hover', "
