@@ -3,6 +3,18 @@
 #include <algorithm>
 
 namespace aerobox {
+namespace {
+
+// [iterations] a thread spins, about 50 us, before it sleeps on a condition variable
+constexpr int kSpins = 20000;
+
+void Relax() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#endif
+}
+
+}  // namespace
 
 WorkerPool::WorkerPool(int threads) {
   for (int i = 1; i < std::max(1, threads); ++i) workers_.emplace_back([this, i] { Work(i); });
@@ -11,7 +23,7 @@ WorkerPool::WorkerPool(int threads) {
 WorkerPool::~WorkerPool() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    stopping_ = true;
+    stopping_.store(true);
   }
   start_.notify_all();
   for (std::thread& worker : workers_) worker.join();
@@ -33,18 +45,20 @@ void WorkerPool::RunBlock(int block) {
 void WorkerPool::Work(int index) {
   long seen = 0;
   for (;;) {
+    for (int spin = 0; spin < kSpins && generation_.load() == seen && !stopping_.load(); ++spin) {
+      Relax();
+    }
     {
       std::unique_lock<std::mutex> lock(mutex_);
-      start_.wait(lock, [&] { return stopping_ || generation_ != seen; });
-      if (stopping_) return;
-      seen = generation_;
+      start_.wait(lock, [&] { return stopping_.load() || generation_.load() != seen; });
+      if (stopping_.load()) return;
+      seen = generation_.load();
     }
     RunBlock(index);
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      --pending_;
+    if (pending_.fetch_sub(1) == 1) {
+      std::lock_guard<std::mutex> lock(mutex_);  // the caller waits under it: no lost wake-up
+      done_.notify_one();
     }
-    done_.notify_one();
   }
 }
 
@@ -64,8 +78,9 @@ void WorkerPool::For(int n, const std::function<void(int begin, int end)>& fn) {
   }
   start_.notify_all();
   RunBlock(0);
+  for (int spin = 0; spin < kSpins && pending_.load() != 0; ++spin) Relax();
   std::unique_lock<std::mutex> lock(mutex_);
-  done_.wait(lock, [&] { return pending_ == 0; });
+  done_.wait(lock, [&] { return pending_.load() == 0; });
   if (error_) std::rethrow_exception(error_);
 }
 

@@ -1,9 +1,12 @@
 // A fixed set of threads that run one loop's blocks together: For(n, fn) splits [0, n) into
 // contiguous blocks, one per thread (the caller's thread takes the first), and returns when all
 // are done. For stepping many independent worlds at once: each index must touch only its own
-// data, so the result does not depend on the number of threads.
+// data, so the result does not depend on the number of threads. A loop that calls For again and
+// again (a batch of worlds stepped from Python) finds its threads awake: they spin for a moment
+// after each call before they sleep.
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
 #include <exception>
 #include <functional>
@@ -34,9 +37,9 @@ class WorkerPool {
   std::mutex mutex_;
   std::condition_variable start_;
   std::condition_variable done_;
-  long generation_ = 0;  // one per For call
-  int pending_ = 0;      // workers still running the current call's blocks
-  bool stopping_ = false;
+  std::atomic<long> generation_{0};  // one per For call
+  std::atomic<int> pending_{0};      // workers still running the current call's blocks
+  std::atomic<bool> stopping_{false};
   int n_ = 0;
   const std::function<void(int, int)>* fn_ = nullptr;
   std::exception_ptr error_;
