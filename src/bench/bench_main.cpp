@@ -18,6 +18,7 @@
 #include "bench/python_benchmark.h"
 #include "bench/render_benchmark.h"
 #include "bench/replanning_benchmark.h"
+#include "bench/rigid_benchmark.h"
 #include "bench/rl_benchmark.h"
 #include "bench/robustness.h"
 #include "bench/solver_comparison.h"
@@ -168,6 +169,8 @@ const std::vector<BenchSection>& Sections() {
          out << "## Learning environments: steps per second against the bare physics\n\n"
              << std::flush;
          RunRlBenchmark(out, c.size);
+         out << "\n";
+         RunRigidBenchmark(out, c.size);
          out << "\n";
          RunRlPeers(out, c.size);
        }},

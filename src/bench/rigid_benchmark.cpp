@@ -1,0 +1,166 @@
+#include "bench/rigid_benchmark.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <memory>
+#include <thread>
+#include <vector>
+
+#include "common/number_format.h"
+#include "common/stop.h"
+#include "common/worker_pool.h"
+#include "control/inner_loops.h"
+#include "envs/env_batch.h"
+#include "envs/env_task.h"
+#include "sim/rigid_body.h"
+
+namespace aerobox {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::time_point begin) {
+  return std::chrono::duration<double>(Clock::now() - begin).count();
+}
+
+double Median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+// [s] of `steps` environment steps of `n` worlds (zero actions: thrust mid-range, no rates;
+// episodes end and reset as in training), resets not timed.
+double TimeSteps(const EnvParams& params, int n, int threads, long steps) {
+  EnvBatch batch(params, n, threads);
+  const size_t d = static_cast<size_t>(batch.observation_size());
+  std::vector<float> obs(n * d);
+  std::vector<double> actions(static_cast<size_t>(n * params.ActionSize()), 0.0), rewards(n),
+      terms(static_cast<size_t>(n * batch.term_count()));
+  std::vector<std::uint8_t> terminated(n), truncated(n);
+  std::vector<std::optional<std::uint64_t>> seeds;
+  for (int i = 0; i < n; ++i) seeds.emplace_back(i);
+  batch.Reset(seeds, obs.data());
+  const auto begin = Clock::now();
+  for (long s = 0; s < steps; ++s) {
+    ThrowIfStopRequested("timing the rigid backend");
+    batch.Step(actions.data(), obs.data(), rewards.data(), terminated.data(), truncated.data(),
+               terms.data());
+  }
+  return Seconds(begin);
+}
+
+// Environment steps per second, the median of the size's repetitions.
+double Rate(const EnvParams& params, int n, int threads, const BenchSize& size) {
+  const long steps = size.smoke ? 5 : std::max(100L, 200000L / n);
+  std::vector<double> times;
+  for (int r = 0; r < size.Repetitions(3); ++r)
+    times.push_back(TimeSteps(params, n, threads, steps));
+  return static_cast<double>(n) * steps / Median(times);
+}
+
+// [s] per world and physics step of the parts alone, in the same threads over `n` worlds: the
+// rigid body's step (from hover, rotor commands varying about hover) and the inner loops (rates
+// from hover).
+struct Parts {
+  double dynamics = 0.0, inner = 0.0;
+};
+Parts TimeParts(const EnvParams& params, int n, int threads, long physics_steps) {
+  const Map map = FindEnvTask(params.task).map(params);
+  const RigidModel model = RigidModel::Of(Simulation::FromXml(EnvSceneXml(params, map), "env"));
+  const QuadParams vehicle = params.Vehicle();
+  const double hover = vehicle.HoverThrustPerRotor();
+  std::vector<std::unique_ptr<RigidBody>> bodies;
+  std::vector<std::unique_ptr<InnerLoops>> loops;
+  for (int i = 0; i < n; ++i) {
+    bodies.push_back(std::make_unique<RigidBody>(model));
+    State s;
+    s.p_W = params.target;
+    bodies.back()->SetVehicleState(s);
+    loops.push_back(std::make_unique<InnerLoops>(InnerLoopParams(), vehicle));
+  }
+  WorkerPool pool(std::min(threads, n));
+  Parts parts;
+  auto begin = Clock::now();
+  pool.For(n, [&](int from, int to) {
+    for (int i = from; i < to; ++i) {
+      for (long k = 0; k < physics_steps; ++k) {
+        bodies[static_cast<size_t>(i)]->Step(Vec4::Constant(hover * (1.0 + 0.01 * (k % 7))));
+      }
+    }
+  });
+  parts.dynamics = Seconds(begin) / (static_cast<double>(n) * physics_steps);
+  begin = Clock::now();
+  pool.For(n, [&](int from, int to) {
+    ControlCommand command;  // each thread's own
+    command.level = CommandLevel::kThrustRates;
+    command.thrust = 4 * hover;
+    InnerOutput out;
+    for (int i = from; i < to; ++i) {
+      for (long k = 0; k < physics_steps; ++k) {
+        command.rate_B = Vec3(0.01 * (k % 5), 0.0, 0.0);
+        loops[static_cast<size_t>(i)]->Run(command, bodies[static_cast<size_t>(i)]->VehicleState(),
+                                           1e-3, &out);
+      }
+    }
+  });
+  parts.inner = Seconds(begin) / (static_cast<double>(n) * physics_steps);
+  return parts;
+}
+
+}  // namespace
+
+void RunRigidBenchmark(std::ostream& out, const BenchSize& size) {
+  const int threads = std::max(1U, std::thread::hardware_concurrency());
+  EnvParams mujoco;  // Hover-v0's defaults: the Crazyflie, 100 Hz, thrust and rates
+  EnvParams rigid = mujoco;
+  rigid.backend = "rigid";
+  out << "aerobox/Hover-v0 at " << FormatNumber(mujoco.control_rate) << " Hz on the rigid backend (the vehicle "
+      << "alone, integrated as MuJoCo integrates it) against MuJoCo's, " << threads
+      << " threads, zero actions, episodes ending and resetting as in training; simulated "
+         "seconds per wall second: environment steps per second over the control rate. Medians "
+         "of "
+      << size.Repetitions(3) << ".\n\n| worlds | physics step | MuJoCo: env steps/s | rigid: env "
+      << "steps/s | rigid / MuJoCo | rigid: simulated s per wall s |\n|---|---|---|---|---|---|\n";
+  const std::vector<int> sizes =
+      size.smoke ? std::vector<int>{1, 4} : std::vector<int>{1, 64, 256, 1024};
+  for (const int n : sizes) {
+    const double a = Rate(mujoco, n, threads, size), b = Rate(rigid, n, threads, size);
+    out << std::fixed << "| " << n << " | 1 ms | " << std::setprecision(0) << a << " | " << b
+        << " | " << std::setprecision(1) << b / a << " | " << std::setprecision(0)
+        << b / rigid.control_rate << " |\n"
+        << std::defaultfloat << std::flush;
+  }
+  // at the peers' integration steps: crazyflow's 2 ms (500 Hz), L2F's 10 ms (100 Hz)
+  for (const double rate : {500.0, 100.0}) {
+    EnvParams coarse = rigid;
+    coarse.physics_rate = rate;
+    EnvParams coarse_mujoco = mujoco;
+    coarse_mujoco.physics_rate = rate;
+    for (const int n : {size.smoke ? 4 : 64, size.smoke ? 4 : 1024}) {
+      const double a = Rate(coarse_mujoco, n, threads, size), b = Rate(coarse, n, threads, size);
+      out << std::fixed << "| " << n << " | " << std::setprecision(0) << 1000.0 / rate << " ms | "
+          << a << " | " << b << " | " << std::setprecision(1) << b / a << " | "
+          << std::setprecision(0) << b / coarse.control_rate << " |\n"
+          << std::defaultfloat << std::flush;
+    }
+  }
+  // where the time goes, at the largest batch and 1 ms
+  const int n = sizes.back();
+  const double per_env_step = 1.0 / Rate(rigid, n, threads, size) * std::min(threads, n);
+  const long physics = std::lround(rigid.physics_rate / rigid.control_rate);
+  const Parts parts = TimeParts(rigid, n, threads, size.smoke ? 10 : 20000);
+  const double dynamics = parts.dynamics * physics * std::min(threads, n) / per_env_step;
+  const double inner = parts.inner * physics * std::min(threads, n) / per_env_step;
+  out << "\nWhere the rigid backend's time goes at " << n << " worlds and 1 ms (the parts timed "
+      << "alone, from hover, in the same threads; per environment step of one world " << std::fixed
+      << std::setprecision(2) << per_env_step * 1e6 << " us of a thread): dynamics "
+      << std::setprecision(0) << 100 * dynamics << " %, the inner loops (rates, mixer) "
+      << 100 * inner << " %, the rest (drag and wind when on, the action's command, the "
+      << "observation, the reward, termination, resets, threads) " << 100 * (1 - dynamics - inner)
+      << " %.\n"
+      << std::defaultfloat << std::flush;
+}
+
+}  // namespace aerobox
