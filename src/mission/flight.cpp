@@ -31,6 +31,10 @@ void FlightParams::Describe(Archive& a) {
   a.Number({"look_ahead", "m", "yaw \"travel\": turns toward the reference this far ahead"},
            &look_ahead, 0.05, 100);
   a.Degrees({"yaw_rate", "deg/s", "yaw \"travel\": turns at most this fast"}, &yaw_rate, 1, 3600);
+  a.Degrees({"turn_first", "deg",
+             "yaw \"travel\": below 0.25 m/s the reference waits while the yaw is further than "
+             "this from the way ahead (180: never)"},
+            &turn_first, 1, 180);
 }
 
 void FlightParams::Validate() const { ValidateFields(*this, "flight"); }
@@ -169,7 +173,8 @@ class FlightRun {
         ++result_.replans;
       }
     }
-    setpoint_ = setpoints_.At(tr);
+    setpoint_ = setpoints_.At(t, tr);
+    takeoff_.Hold(setpoints_.waiting());
     if (t >= loop_.nonfinite_setpoint_from) {
       setpoint_.p_W.x() = std::numeric_limits<double>::quiet_NaN();
     }

@@ -33,6 +33,11 @@ struct FlightParams {
   // follows the velocity of a slow, tight turn would spin the vehicle and saturate its rotors).
   double look_ahead = 1.0;               // [m]
   double yaw_rate = 2.0943951023931953;  // [rad/s] 120 deg/s
+  // With face_travel: where the reference moves slower than FlightParams::kWaitSpeed (a start
+  // from rest, a sharp turn), its clock stands while the yaw is further than this from the way
+  // ahead [rad]: the camera sees where the vehicle goes before it goes (pi: never waits).
+  double turn_first = 0.3490658503988659;     // [rad] 20 deg
+  static constexpr double kWaitSpeed = 0.25;  // [m/s]
 
   void Describe(Archive& a);  // [flight] (common/schema.h)
   // Throws std::invalid_argument naming the field.

@@ -37,7 +37,14 @@ double Takeoff::ReferenceTime(double t, const State& state) {
     lifting_ = false;
     time_ = t;
   }
-  return lifting_ ? 0.0 : t - time_;
+  if (lifting_) return 0.0;
+  const double tr = t - time_ - held_;
+  if (holding_) {
+    held_ += tr - tr_;  // the clock stands
+    return tr_;
+  }
+  tr_ = tr;
+  return tr_;
 }
 
 Setpoints::Setpoints(const Reference& reference, const FlightParams& params, double initial_yaw)
@@ -45,22 +52,32 @@ Setpoints::Setpoints(const Reference& reference, const FlightParams& params, dou
       face_travel_(params.face_travel),
       look_ahead_(params.look_ahead),
       yaw_rate_(params.yaw_rate),
+      turn_first_(params.turn_first),
       yaw_(initial_yaw),
       yaw_time_(0.0) {}
 
-FlatOutput Setpoints::At(double tr) {
+FlatOutput Setpoints::At(double t, double tr) {
   const double duration = current_.duration;
   FlatOutput setpoint;
   setpoint.p_W = current_.evaluate(std::min(tr, duration), kPosition);
+  waiting_ = false;
   if (tr < duration) {
     setpoint.v_W = current_.evaluate(tr, kVelocity);
-    setpoint.a_W = current_.evaluate(tr, kAcceleration);
-    setpoint.j_W = current_.evaluate(tr, kJerk);
-    setpoint.s_W = current_.evaluate(tr, kSnap);
     if (current_.heading) {
       std::tie(yaw_, setpoint.yaw_rate) = current_.heading(tr);
     } else if (face_travel_) {
-      std::tie(yaw_, setpoint.yaw_rate) = AlongTravel(tr);
+      const Turn turn = AlongTravel(t, tr, setpoint.v_W.head<2>().norm());
+      yaw_ = turn.yaw;
+      setpoint.yaw_rate = turn.rate;
+      waiting_ =
+          std::abs(turn.left) > turn_first_ && setpoint.v_W.norm() < FlightParams::kWaitSpeed;
+    }
+    if (waiting_) {
+      setpoint.v_W.setZero();  // at rest where the reference stands
+    } else {
+      setpoint.a_W = current_.evaluate(tr, kAcceleration);
+      setpoint.j_W = current_.evaluate(tr, kJerk);
+      setpoint.s_W = current_.evaluate(tr, kSnap);
     }
   } else if (current_.heading) {
     yaw_ = current_.heading(duration).first;
@@ -69,25 +86,28 @@ FlatOutput Setpoints::At(double tr) {
   return setpoint;
 }
 
-std::pair<double, double> Setpoints::AlongTravel(double tr) {
+Setpoints::Turn Setpoints::AlongTravel(double t, double tr, double speed) {
   constexpr double kPi = 3.14159265358979323846;
   constexpr double kStep = 0.02;     // [s] along the reference
   constexpr double kHorizon = 3.0;   // [s] looked ahead at most
   constexpr double kMinimum = 0.15;  // [m] nearer, the direction means nothing: the yaw holds
-  const double elapsed = std::max(0.0, tr - yaw_time_);
-  yaw_time_ = tr;
+  constexpr double kLookTime = 1.0;  // [s] a slow reference: the way of its next second ...
+  constexpr double kNearest = 0.3;   // [m] ... but at least this far
+  const double distance = std::clamp(speed * kLookTime, kNearest, look_ahead_);
+  const double elapsed = std::max(0.0, t - yaw_time_);
+  yaw_time_ = t;
   const Vec3 here = current_.evaluate(tr, kPosition);
   Vec3 ahead = here;
   for (double s = tr + kStep; s <= tr + kHorizon; s += kStep) {
     ahead = current_.evaluate(std::min(s, current_.duration), kPosition);
-    if ((ahead - here).head<2>().norm() >= look_ahead_ || s >= current_.duration) break;
+    if ((ahead - here).head<2>().norm() >= distance || s >= current_.duration) break;
   }
   const Eigen::Vector2d toward = (ahead - here).head<2>();
-  if (toward.norm() < kMinimum) return {yaw_, 0.0};
+  if (toward.norm() < kMinimum) return {yaw_, 0.0, 0.0};
   const double turn = std::remainder(std::atan2(toward.y(), toward.x()) - yaw_, 2.0 * kPi);
   const double step = std::clamp(turn, -yaw_rate_ * elapsed, yaw_rate_ * elapsed);
   const double rate = elapsed > 0 ? step / elapsed : 0.0;
-  return {std::remainder(yaw_ + step, 2.0 * kPi), rate};
+  return {std::remainder(yaw_ + step, 2.0 * kPi), rate, turn - step};
 }
 
 Air::Air(const FlightLoop& loop, const Vec3& p_W)
@@ -257,8 +277,9 @@ std::optional<FlightStatus> ArrivalRule::Judge(const FlightMoment& now) {
 }
 
 std::optional<FlightStatus> TimeLimitRule::Judge(const FlightMoment& now) {
-  const double end_time = now.duration + settle_time_;
-  if (now.t >= end_time + now.takeoff.time()) return FlightStatus::kTimeout;
+  // the reference's end on the flight's clock: after the take-off and the clock's holds
+  const double end_time = now.duration + settle_time_ + now.takeoff.time() + now.takeoff.held();
+  if (now.t >= end_time) return FlightStatus::kTimeout;
   return std::nullopt;
 }
 

@@ -25,6 +25,7 @@ namespace aerobox {
 // Take-off: a vehicle resting on the floor below the reference's start lifts to it first. The
 // reference's clock waits at its start until the vehicle is there (within 2 cm, below 0.3 m/s)
 // or 3 s have passed; until the first step without floor contact, the floor is no collision.
+// The clock also stands while held (the vehicle turns toward the way ahead before it goes).
 class Takeoff {
  public:
   // `start`: the reference's first point [m]; `initial` the vehicle's state, `touching`
@@ -33,6 +34,9 @@ class Takeoff {
 
   // The reference's own time [s] at flight time `t`, ending the lift when the vehicle is there.
   double ReferenceTime(double t, const State& state);
+  // From the next step on, the reference's time stands (`on`) or runs again.
+  void Hold(bool on) { holding_ = on; }
+  double held() const { return held_; }  // [s] the clock has stood in all
   bool lifting() const { return lifting_; }
   // Whether the vehicle has left the floor (floor contacts are collisions from then on).
   bool airborne() const { return airborne_; }
@@ -43,7 +47,10 @@ class Takeoff {
   Vec3 start_;
   bool airborne_;
   bool lifting_;
+  bool holding_ = false;
   double time_ = 0.0;
+  double held_ = 0.0;  // [s]
+  double tr_ = 0.0;    // [s] the last reference time
 };
 
 // The setpoints along the reference flown: its flat outputs up to snap while it runs, its end
@@ -57,20 +64,30 @@ class Setpoints {
   void Replace(const Reference& next) { current_ = next; }
   const Reference& current() const { return current_; }
   double duration() const { return current_.duration; }
-  // The setpoint at the reference's time `tr` [s].
-  FlatOutput At(double tr);
+  // The setpoint at flight time `t` and the reference's time `tr` [s].
+  FlatOutput At(double t, double tr);
+  // With face_travel: whether the reference should wait for the yaw (FlightParams::turn_first);
+  // its setpoint is then at rest.
+  bool waiting() const { return waiting_; }
 
  private:
-  // The yaw along the travel at `tr`: toward the reference look_ahead ahead, turned from the
-  // last at most yaw_rate since it was set; and the rate it turns at.
-  std::pair<double, double> AlongTravel(double tr);
+  // The yaw along the travel at `tr`: toward the reference look_ahead ahead (nearer while the
+  // reference's horizontal `speed` [m/s] is slow: the way of its next second, at least 0.3 m),
+  // turned from the last at most yaw_rate since it was set (at flight time `t`); the rate it
+  // turns at; and how far it has still to turn [rad] (0 when there is no way ahead to turn to).
+  struct Turn {
+    double yaw, rate, left;
+  };
+  Turn AlongTravel(double t, double tr, double speed);
 
   Reference current_;
   bool face_travel_;
   double look_ahead_;  // [m]
   double yaw_rate_;    // [rad/s]
+  double turn_first_;  // [rad]
   double yaw_;         // [rad] the last one set: held when nothing sets another
-  double yaw_time_;    // [s] of the reference, when yaw_ was set
+  double yaw_time_;    // [s] of flight, when yaw_ was set
+  bool waiting_ = false;
 };
 
 // The air: the wind where the vehicle is (mean, gusts, turbulence) and the drag it causes,

@@ -143,7 +143,7 @@ TEST_CASE("yaw along the travel: turns at most yaw_rate, toward the reference lo
   constexpr double kStep = 0.004;  // [s]
   double previous = 0.0, fastest = 0.0;
   for (double t = 0.0; t < 3.0; t += kStep) {
-    const FlatOutput s = setpoints.At(t);
+    const FlatOutput s = setpoints.At(t, t);
     // a yaw along the velocity would turn at 2 rad/s here (and spin with any faster circle)
     fastest = std::max(fastest, std::abs(std::remainder(s.yaw - previous, 2 * M_PI)) / kStep);
     CHECK(std::abs(s.yaw_rate) <= params.yaw_rate + 1e-9);
@@ -152,12 +152,48 @@ TEST_CASE("yaw along the travel: turns at most yaw_rate, toward the reference lo
   CHECK(fastest <= params.yaw_rate + 1e-6);
   // on the straight run, the yaw settles along +y, the way the reference goes 1 m ahead
   FlatOutput s;
-  for (double t = 3.0; t < 7.0; t += kStep) s = setpoints.At(t);
+  for (double t = 3.0; t < 7.0; t += kStep) s = setpoints.At(t, t);
   CHECK(std::abs(std::remainder(s.yaw - M_PI / 2, 2 * M_PI)) < 1e-6);
   // held: the yaw stays where it was
   params.face_travel = false;
   Setpoints held(TightTurnThenRun(), params, 0.3);
-  CHECK(held.At(5.0).yaw == doctest::Approx(0.3));
+  CHECK(held.At(5.0, 5.0).yaw == doctest::Approx(0.3));
+}
+
+TEST_CASE(
+    "yaw along the travel: from rest, the reference waits while the camera turns to its way") {
+  FlightParams params;
+  params.face_travel = true;
+  // from rest at the origin, away along -x (behind a vehicle facing +x), smoothly
+  const Reference behind = testing::FromFunction(4.0, [](double t) {
+    const double s = std::min(t / 4.0, 1.0);
+    return Vec3(-4.0 * s * s * s * (10 - 15 * s + 6 * s * s), 0, 1);
+  });
+  Setpoints setpoints(behind, params, 0.0);
+  State at_rest;
+  at_rest.p_W = Vec3(0, 0, 1);
+  Takeoff clock(Vec3(0, 0, 1), at_rest, false);  // in the air: no lift
+  constexpr double kStep = 0.004;                // [s]
+  double first_move = -1.0;
+  for (double t = 0.0; t < 3.0; t += kStep) {
+    const double tr = clock.ReferenceTime(t, at_rest);
+    const FlatOutput s = setpoints.At(t, tr);
+    clock.Hold(setpoints.waiting());
+    if (setpoints.waiting()) {
+      CHECK(s.v_W.norm() == 0.0);  // held at rest while it turns
+      CHECK(s.p_W.isApprox(Vec3(0, 0, 1)));
+    }
+    if (first_move < 0 && tr > 0.0) first_move = t;
+  }
+  // the yaw turns pi at yaw_rate (120 deg/s) and the clock runs again once it is within
+  // turn_first (20 deg) of the way: after (180 - 20) / 120 s
+  CHECK(first_move == doctest::Approx((M_PI - params.turn_first) / params.yaw_rate).epsilon(0.03));
+  CHECK(clock.held() == doctest::Approx(first_move).epsilon(0.03));
+  // with turn_first 180 deg it never waits
+  params.turn_first = M_PI;
+  Setpoints eager(behind, params, 0.0);
+  eager.At(0.0, 0.0);
+  CHECK_FALSE(eager.waiting());
 }
 
 }  // namespace aerobox
