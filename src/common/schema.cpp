@@ -15,7 +15,11 @@ void Archive::Integer(const Field& field, int* value, long low, long high) {
 }
 
 void Archive::Degrees(const Field& field, double* radians, double low, double high) {
-  const double given = *radians * 180.0 / M_PI;
+  // in degrees, without the conversion's last-digit noise (120 deg, not 119.99999999999999)
+  const double exact = *radians * 180.0 / M_PI;
+  const double whole = std::round(exact * 1e9) / 1e9;
+  const double given =
+      std::abs(whole - exact) <= 1e-12 * std::max(1.0, std::abs(exact)) ? whole : exact;
   double degrees = given;
   Number(field, &degrees, low, high);
   if (degrees != given) *radians = degrees * (M_PI / 180.0);
