@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <utility>
 #include <vector>
 
 #include "envs/env_batch.h"
@@ -148,22 +150,17 @@ TEST_CASE("the floor ends an episode as a crash, and time as a truncation") {
 }
 
 TEST_CASE("bad parameters name the field") {
-  EnvParams params;
-  params.control_rate = 300;
-  CHECK_THROWS_WITH_AS(EnvBatch(params, 1, 1), doctest::Contains("control_rate 300"),
-                       std::invalid_argument);
-  params = EnvParams();
-  params.backend = "bullet";
-  CHECK_THROWS_WITH_AS(EnvBatch(params, 1, 1), doctest::Contains("env.backend"),
-                       std::invalid_argument);
-  params = EnvParams();
-  params.physics_rate = 450;
-  CHECK_THROWS_WITH_AS(EnvBatch(params, 1, 1), doctest::Contains("physics_rate 450"),
-                       std::invalid_argument);
-  params = EnvParams();
-  params.action = "motors";
-  CHECK_THROWS_WITH_AS(EnvBatch(params, 1, 1), doctest::Contains("env.action"),
-                       std::invalid_argument);
+  const std::pair<std::function<void(EnvParams*)>, const char*> cases[] = {
+      {[](EnvParams* p) { p->control_rate = 300; }, "control_rate 300"},
+      {[](EnvParams* p) { p->backend = "bullet"; }, "env.backend"},
+      {[](EnvParams* p) { p->physics_rate = 450; }, "physics_rate 450"},
+      {[](EnvParams* p) { p->action = "motors"; }, "env.action"},
+  };
+  for (const auto& [change, message] : cases) {
+    EnvParams params;
+    change(&params);
+    CHECK_THROWS_WITH_AS(EnvBatch(params, 1, 1), doctest::Contains(message), std::invalid_argument);
+  }
 }
 
 }  // namespace
