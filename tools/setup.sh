@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian packages aerobox needs to build and test, and nothing when they are all
 # there already. Runs apt-get as root, or through sudo otherwise.
-# Usage: tools/setup.sh [--bench]   (--bench adds OMPL and L2F, references of `aerobox bench`)
+# Usage: tools/setup.sh [--bench]   (--bench adds OMPL, L2F and crazyflow's own environment
+# .venv-crazyflow: references of `aerobox bench`)
 set -euo pipefail
 
 packages=(
@@ -69,11 +70,30 @@ else
   "${sudo[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
+top=$(cd "$(dirname "$0")/.." && pwd)
+# --bench: crazyflow, the rl benchmark's peer, in its own environment (its JAX and numpy 2 would
+# clash with the project environment's Debian packages)
+if [ "${1:-}" = "--bench" ]; then
+  peer=$top/.venv-crazyflow
+  peer_pins=$(/usr/bin/python3 -c 'import sys, tomllib
+with open(sys.argv[1], "rb") as file:
+    print(" ".join(tomllib.load(file)["project"]["optional-dependencies"]["crazyflow-peer"]))' \
+    "$top/pyproject.toml")
+  if [ "$(cat "$peer/aerobox-pins" 2> /dev/null)" = "$peer_pins" ]; then
+    echo "setup: crazyflow's environment .venv-crazyflow has its pinned packages"
+  else
+    echo "setup: crazyflow's environment .venv-crazyflow: installing $peer_pins"
+    [ -x "$peer/bin/python" ] || /usr/bin/python3 -m venv "$peer"
+    # shellcheck disable=SC2086 # one argument per pin
+    "$peer/bin/python" -m pip install --quiet --disable-pip-version-check $peer_pins
+    echo "$peer_pins" > "$peer/aerobox-pins"
+  fi
+fi
+
 # The project environment .venv: Debian's python3, seeing Debian's numpy, scipy, matplotlib and
 # pandas (--system-site-packages), with the packages our users take from PyPI: every one is
 # pinned in pyproject.toml's "peers" extra and installed --no-deps, so nothing unpinned (PyPI's
 # CUDA torch above all) comes in. The Python tests that fly RotorPy's own objects run in it.
-top=$(cd "$(dirname "$0")/.." && pwd)
 venv=$top/.venv
 # --bench adds the "bench-peers" extra (L2F, compiled here from its source package)
 pins=$(/usr/bin/python3 -c 'import sys, tomllib

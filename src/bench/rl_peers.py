@@ -1,7 +1,7 @@
 """aerobox bench --sections rl, its peers, in one process:
 
 1. RotorPy 3.0's batched QuadrotorEnv (rotorpy.learning, torch on the CPU) against aerobox's
-   vector environment, both stable-baselines3 VecEnvs, at the same 100 Hz control rate,
+   vector environment on each physics backend, both stable-baselines3 VecEnvs, at the same 100 Hz control rate,
    collective thrust and body rates, the Crazyflie. RotorPy integrates its batched dynamics once
    per step with torchdiffeq's default solver (dopri5, adaptive), aerobox with MuJoCo at 1 ms
    (10 steps) and its inner loops at each.
@@ -14,7 +14,12 @@
    fastest CPU quadrotor simulator we know, against aerobox's vector environment at 100 Hz, when
    tools/setup.sh --bench has built it (its PyPI package is a source package compiled with
    -march=native, about 6 minutes on two cores, so the default set-up does not take it).
-4. Training: examples/train_hover.py (PPO on 32 worlds) until its policy holds within 10 cm for
+4. crazyflow 0.4 (JAX on the CPU, MuJoCo's MJX for contacts only on demand), run in its own
+   environment (.venv-crazyflow, tools/setup.sh --bench) by crazyflow_peer.py: its Sim at its
+   fastest (no Gymnasium wrapper, 10 physics steps of 2 ms per attitude command) against aerobox's
+   rigid backend through gym.make_vec (observation, reward and autoreset included) at 1 ms and at
+   crazyflow's 2 ms. Simulated seconds per wall second.
+5. Training: examples/train_hover.py (PPO on 32 worlds) until its policy holds within 10 cm for
    the last 10 s of 15 s episodes from 10 random starts within 1 m: the steps and the wall time
    (the issue's target: under 15 minutes on two cores; RotorPy's README: a working hover in
    under 4 minutes on a laptop's many cores).
@@ -35,6 +40,7 @@ import contextlib
 import ctypes
 import io
 import re
+import subprocess
 import tempfile
 import warnings
 
@@ -128,8 +134,9 @@ def rotorpy_table(sizes, repetitions, smoke, threads):
           f"{threads} threads) and aerobox's vector environment (aerobox/Hover-v0, {threads} "
           "threads), both stable-baselines3 VecEnvs at 100 Hz, action cmd_ctbr / ctbr, the "
           f"Crazyflie. Medians of {repetitions}.\n")
-    print("| worlds | RotorPy: env steps/s | aerobox: env steps/s | aerobox / RotorPy |")
-    print("|---|---|---|---|")
+    print("| worlds | RotorPy: env steps/s | aerobox MuJoCo: env steps/s | aerobox / RotorPy | "
+          "aerobox rigid: env steps/s | rigid / RotorPy |")
+    print("|---|---|---|---|---|---|")
     for n in sizes:
         steps = 5 if smoke else max(20, 6400 // n)
         a, b = medians(
@@ -137,7 +144,10 @@ def rotorpy_table(sizes, repetitions, smoke, threads):
             lambda: rate(make_default_vec_env(n, quad_params, "cmd_ctbr", torch.device("cpu")), n,
                          steps),
             lambda: rate(AeroboxVecEnv("aerobox/Hover-v0", n, action="ctbr"), n, steps))
-        print(f"| {n} | {a:.0f} | {b:.0f} | {b / a:.1f} |", flush=True)
+        c = statistics.median(
+            rate(AeroboxVecEnv("aerobox/Hover-v0", n, action="ctbr", backend="rigid"), n,
+                 steps * 10) for _ in range(repetitions))
+        print(f"| {n} | {a:.0f} | {b:.0f} | {b / a:.1f} | {c:.0f} | {c / a:.1f} |", flush=True)
 
 
 def pyflyt_table(sizes, repetitions, smoke):
@@ -145,16 +155,22 @@ def pyflyt_table(sizes, repetitions, smoke):
           "SyncVectorEnv, one thread) and aerobox/Hover-v0 (100 Hz, its own vector environment, "
           f"gym.make_vec), body rates and thrust. Medians of {repetitions}.\n")
     print("| worlds | PyFlyt: env steps/s | PyFlyt: simulated s per wall s | aerobox: env steps/s "
-          "| aerobox: simulated s per wall s | aerobox / PyFlyt (simulated s) |")
-    print("|---|---|---|---|---|---|")
+          "| aerobox: simulated s per wall s | aerobox / PyFlyt (simulated s) | aerobox rigid: "
+          "simulated s per wall s | rigid / PyFlyt |")
+    print("|---|---|---|---|---|---|---|---|")
+    hover = np.array([0.1, 0.0, 0.0, 0.0])
     for n in sizes:
         steps = 5 if smoke else max(20, 3200 // n)
         a, b = medians(
             repetitions, lambda: pyflyt_rate(n, steps),
-            lambda: gym_rate(gym.make_vec("aerobox/Hover-v0", num_envs=n, action="ctbr"),
-                             np.array([0.1, 0.0, 0.0, 0.0]), steps))
+            lambda: gym_rate(gym.make_vec("aerobox/Hover-v0", num_envs=n, action="ctbr"), hover,
+                             steps))
+        c = statistics.median(
+            gym_rate(gym.make_vec("aerobox/Hover-v0", num_envs=n, action="ctbr", backend="rigid"),
+                     hover, steps * 10) for _ in range(repetitions))
         print(f"| {n} | {a:.0f} | {a / PYFLYT_HZ:.0f} | {b:.0f} | {b / 100:.0f} | "
-              f"{(b / 100) / (a / PYFLYT_HZ):.1f} |", flush=True)
+              f"{(b / 100) / (a / PYFLYT_HZ):.1f} | {c / 100:.0f} | "
+              f"{(c / 100) / (a / PYFLYT_HZ):.1f} |", flush=True)
 
 
 def l2f_rate(n, steps, warm_up=5):
@@ -191,38 +207,89 @@ def l2f_table(sizes, repetitions, smoke):
               "(run by tools/bench.sh) builds it.")
         return
     print(f"\nL2F 2.0's vector environment (\"Learning to Fly in Seconds\", C++ through pybind11, "
-          "100 Hz, observe and step, no contacts or obstacles) and aerobox/Hover-v0 (100 Hz, its "
-          f"own vector environment, gym.make_vec), motor commands. Medians of {repetitions}.\n")
-    print("| worlds | L2F: env steps/s | aerobox: env steps/s | aerobox / L2F |")
-    print("|---|---|---|---|")
+          "100 Hz, one 10 ms integration step per step, observe and step, no contacts or "
+          "obstacles) and aerobox/Hover-v0 (100 Hz, its own vector environment, gym.make_vec), "
+          "motor commands: on MuJoCo at 1 ms, and on the rigid backend at L2F's 10 ms. Medians "
+          f"of {repetitions}.\n")
+    print("| worlds | L2F: env steps/s | aerobox MuJoCo: env steps/s | aerobox rigid, 10 ms: env "
+          "steps/s | MuJoCo / L2F | rigid / L2F |")
+    print("|---|---|---|---|---|---|")
     for n in sizes:
         steps = 5 if smoke else max(200, 400000 // n)
         a, b = medians(
             repetitions, lambda: l2f_rate(n, steps),
             lambda: gym_rate(gym.make_vec("aerobox/Hover-v0", num_envs=n, action="thrusts"),
                              np.zeros(4), max(5, steps // 100)))
-        print(f"| {n} | {a:.0f} | {b:.0f} | {b / a:.3f} |", flush=True)
+        c = statistics.median(
+            gym_rate(gym.make_vec("aerobox/Hover-v0", num_envs=n, action="thrusts",
+                                  backend="rigid", physics_rate=100), np.zeros(4), steps)
+            for _ in range(repetitions))
+        print(f"| {n} | {a:.0f} | {b:.0f} | {c:.0f} | {b / a:.3f} | {c / a:.3f} |", flush=True)
+
+
+CRAZYFLOW_PYTHON = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                                ".venv-crazyflow", "bin", "python")
+
+
+def crazyflow_rates(sizes, repetitions, smoke):
+    """{worlds: simulated s per wall s} of crazyflow's Sim, from its own environment."""
+    script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "crazyflow_peer.py")
+    argv = [CRAZYFLOW_PYTHON, script, str(repetitions), "10"] + [str(n) for n in sizes]
+    done = subprocess.run(argv + (["--smoke"] if smoke else []), capture_output=True, text=True,
+                          check=True)
+    rows = [line.split()[1:] for line in done.stdout.splitlines() if line.startswith("rate ")]
+    return {int(n): float(r) for n, r in rows}
+
+
+def crazyflow_table(sizes, repetitions, smoke):
+    if not os.path.exists(CRAZYFLOW_PYTHON):
+        print("\ncrazyflow is not installed in its environment (.venv-crazyflow): tools/setup.sh "
+              "--bench (run by tools/bench.sh) makes it.")
+        return
+    print("\ncrazyflow 0.4's Sim (JAX on the CPU, its own environment; attitude control, 10 "
+          "physics steps of 2 ms per command, no wrapper) and aerobox/Hover-v0 on the rigid "
+          "backend (gym.make_vec, 100 Hz, rates and thrust; its physics at 1 ms and at 2 ms). "
+          f"Simulated seconds per wall second, medians of {repetitions}.\n")
+    print("| worlds | crazyflow | aerobox rigid, 1 ms | aerobox rigid, 2 ms | aerobox / crazyflow "
+          "(1 ms, 2 ms) |\n|---|---|---|---|---|")
+    theirs = crazyflow_rates(sizes, repetitions, smoke)
+    for n in sizes:
+        steps = 5 if smoke else max(100, 200000 // n)
+        ours = []
+        for physics in (1000, 500):
+            envs = gym.make_vec("aerobox/Hover-v0", num_envs=n, backend="rigid",
+                                physics_rate=physics)
+            ours.append(statistics.median(gym_rate(envs, np.zeros(4), steps)
+                                          for _ in range(repetitions)) / 100.0)
+        print(f"| {n} | {theirs[n]:.0f} | {ours[0]:.0f} | {ours[1]:.0f} | "
+              f"{ours[0] / theirs[n]:.2f}, {ours[1] / theirs[n]:.2f} |", flush=True)
 
 
 def training_row(smoke):
-    """Runs examples/train_hover.py in this process and prints what it took."""
+    """Runs examples/train_hover.py in this process on each backend and prints what it took and
+    how the policy holds on both."""
     sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
                                     "examples"))
     import train_hover
 
     args = ["--steps", "4096", "--envs", "4", "--eval-every", "4096"] if smoke else []
-    with tempfile.TemporaryDirectory() as folder:
-        log = io.StringIO()
-        begin = time.perf_counter()
-        with contextlib.redirect_stdout(log):
-            train_hover.main(args + ["--out", os.path.join(folder, "policy")])
-        wall = time.perf_counter() - begin
-    checks = re.findall(r"(\d+) steps, \d+ s: .* from (\d+)/10 starts", log.getvalue())
-    steps, held = checks[-1]
     print("\nTraining a hover policy (examples/train_hover.py: PPO, 32 worlds, ctatt; until 10 of "
-          "10 starts hold within 10 cm for the last 10 s of 15 s).\n")
-    print("| environment steps | wall time [s] | starts held |\n|---|---|---|")
-    print(f"| {int(steps)} | {wall:.0f} | {held}/10 |", flush=True)
+          "10 starts hold within 10 cm for the last 10 s of 15 s on both backends), trained on "
+          "each backend.\n")
+    print("| trained on | environment steps | wall time [s] | held on MuJoCo | held on the rigid "
+          "backend |\n|---|---|---|---|---|")
+    for backend in ("mujoco", "rigid"):
+        with tempfile.TemporaryDirectory() as folder:
+            log = io.StringIO()
+            begin = time.perf_counter()
+            with contextlib.redirect_stdout(log):
+                train_hover.main(args + ["--out", os.path.join(folder, "policy"), "--backend",
+                                         backend])
+            wall = time.perf_counter() - begin
+        checks = re.findall(r"(\d+) steps, \d+ s: .*on MuJoCo (\d+)/10, on the rigid backend "
+                            r"(\d+)/10", log.getvalue())
+        steps, mujoco, rigid = checks[-1]
+        print(f"| {backend} | {int(steps)} | {wall:.0f} | {mujoco}/10 | {rigid}/10 |", flush=True)
 
 
 def main(argv):
@@ -232,7 +299,8 @@ def main(argv):
     sizes, repetitions = ([4], 1) if smoke else ([16, 64, 256], 3)
     rotorpy_table(sizes, repetitions, smoke, threads)
     pyflyt_table([4] if smoke else [1, 16, 64], repetitions, smoke)
-    l2f_table([4] if smoke else [16, 64, 256], repetitions, smoke)
+    l2f_table([4] if smoke else [64, 1024], repetitions, smoke)
+    crazyflow_table([4] if smoke else [64, 1024], repetitions, smoke)
     training_row(smoke)
     return 0
 
