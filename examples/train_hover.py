@@ -11,8 +11,8 @@ rate loops run below it at 1 kHz. Observations and rewards are normalised by SB3
 them. Every --eval-every steps it flies the policy for 15 s from 10 random starts (within 1 m, as
 in training) on both physics backends (--backend: the one it trains on) and prints how many it
 held within 10 cm for the last 10 s, and the wall time; it stops when all 10 hold on both (or at
---steps). On two cores that took 1.1 million steps, about 2
-minutes (with OpenBLAS, which tools/setup.sh installs: without it, torch's updates take 8 times
+--steps). On two cores that took 1.1 to 1.8 million steps and 2 to 6 minutes on MuJoCo, 1.1
+million steps and about 3 minutes on the rigid backend (with OpenBLAS, which tools/setup.sh installs: without it, torch's updates take 8 times
 longer). Writes OUT.zip (the policy) and OUT.json (the environment's parameters, the
 observation's normalisation and the vehicle's mass [kg], which the controller checks against
 the vehicle it flies). Runs in the project environment (.venv: Debian's CPU torch,
