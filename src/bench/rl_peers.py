@@ -235,8 +235,9 @@ def crazyflow_rates(sizes, repetitions, smoke):
     """{worlds: simulated s per wall s} of crazyflow's Sim, from its own environment."""
     script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "crazyflow_peer.py")
     argv = [CRAZYFLOW_PYTHON, script, str(repetitions), "10"] + [str(n) for n in sizes]
-    done = subprocess.run(argv + (["--smoke"] if smoke else []), capture_output=True, text=True,
-                          check=True)
+    with tempfile.TemporaryDirectory() as folder:  # MuJoCo's MUJOCO_LOG.TXT lands there
+        done = subprocess.run(argv + (["--smoke"] if smoke else []), capture_output=True,
+                              text=True, check=True, cwd=folder)
     rows = [line.split()[1:] for line in done.stdout.splitlines() if line.startswith("rate ")]
     return {int(n): float(r) for n, r in rows}
 
