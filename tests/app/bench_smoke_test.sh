@@ -37,11 +37,14 @@ if grep -q "skipped" "$work/tables.md"; then
   echo "FAIL: a section was skipped"
   exit 1
 fi
-grep -q "^| environment steps | wall time \[s\] | starts held |" "$work/tables.md" ||
-  { cat "$work/tables.md"; echo "FAIL: the training row is missing"; exit 1; }
-grep -q "aerobox / PyFlyt (simulated s) |$" "$work/tables.md" ||
+grep -q "^| trained on | environment steps | wall time \[s\] | held on MuJoCo | held on the rigid backend |" "$work/tables.md" &&
+  [ "$(grep -cE '^\| (mujoco|rigid) \| [0-9]+ \|' "$work/tables.md")" = 2 ] ||
+  { cat "$work/tables.md"; echo "FAIL: the training rows (one per backend) are missing"; exit 1; }
+grep -q "^| worlds | physics step | MuJoCo: env steps/s | rigid: env steps/s |" "$work/tables.md" ||
+  { cat "$work/tables.md"; echo "FAIL: the rigid backend's table is missing"; exit 1; }
+grep -q "aerobox / PyFlyt (simulated s) | aerobox rigid: simulated s per wall s | rigid / PyFlyt |$" "$work/tables.md" ||
   { cat "$work/tables.md"; echo "FAIL: the PyFlyt table is missing"; exit 1; }
-grep -q "aerobox / RotorPy |$" "$work/tables.md" ||
+grep -q "aerobox / RotorPy | aerobox rigid: env steps/s | rigid / RotorPy |$" "$work/tables.md" ||
   { cat "$work/tables.md"; echo "FAIL: the learning environments' peers table is missing"; exit 1; }
 grep -q "^| navigate |" "$work/tables.md" ||
   { cat "$work/tables.md"; echo "FAIL: the learning environments' table lacks navigate"; exit 1; }
