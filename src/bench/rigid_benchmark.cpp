@@ -15,6 +15,7 @@
 #include "envs/env_batch.h"
 #include "envs/env_task.h"
 #include "sim/rigid_body.h"
+#include "sim/simulation.h"
 
 namespace aerobox {
 namespace {
@@ -60,12 +61,53 @@ double Rate(const EnvParams& params, int n, int threads, const BenchSize& size) 
   return static_cast<double>(n) * steps / Median(times);
 }
 
-// [s] per world and physics step of the parts alone, in the same threads over `n` worlds: the
+// [s] of the parts alone, in the same threads over `n` worlds: per world and physics step the
 // rigid body's step (from hover, rotor commands varying about hover) and the inner loops (rates
-// from hover).
+// from hover); per world and environment step the action's command, the task's observation and
+// reward, and a reset.
 struct Parts {
-  double dynamics = 0.0, inner = 0.0;
+  double dynamics = 0.0, inner = 0.0;  // per physics step
+  double command = 0.0, task = 0.0;    // per environment step
+  double reset = 0.0;                  // per reset
 };
+
+// [s] per call of `fn(world)` over `calls` calls for each of `n` worlds, in `pool`'s threads.
+template <typename Fn>
+double PerCall(WorkerPool& pool, int n, long calls, Fn fn) {
+  const auto begin = Clock::now();
+  pool.For(n, [&](int from, int to) {
+    for (int i = from; i < to; ++i) {
+      for (long k = 0; k < calls; ++k) fn(i, k);
+    }
+  });
+  return Seconds(begin) / (static_cast<double>(n) * calls);
+}
+
+// The environment's own parts: the command, the task's observation and reward, a reset.
+void TimeEnvironmentParts(const EnvParams& params, int n, int threads, long calls, Parts* parts) {
+  EnvBatch batch(params, n, threads);
+  const Map& map = batch.map();
+  std::vector<std::unique_ptr<EnvTask>> tasks;
+  for (int i = 0; i < n; ++i) {
+    tasks.push_back(FindEnvTask(params.task).make(params, params.Vehicle(), map));
+    EnvRandom random;
+    random.Seed(static_cast<std::uint64_t>(i));
+    tasks.back()->Begin(random, EnvOptions());
+  }
+  const size_t d = static_cast<size_t>(batch.observation_size());
+  std::vector<float> obs(n * d);
+  const double action[4] = {0.1, 0.0, 0.0, 0.0};
+  WorkerPool pool(std::min(threads, n));
+  parts->command = PerCall(pool, n, calls, [&](int i, long) { batch.world(i).CommandOf(action); });
+  parts->task = PerCall(pool, n, calls, [&](int i, long k) {
+    const State s = batch.world(i).state();
+    tasks[static_cast<size_t>(i)]->Observe(0.01 * k, s, obs.data() + i * d);
+    tasks[static_cast<size_t>(i)]->Score(0.01 * k, s, action);
+  });
+  parts->reset = PerCall(pool, n, std::max(1L, calls / 100), [&](int i, long) {
+    batch.world(i).Reset(std::nullopt, obs.data() + i * d);
+  });
+}
 Parts TimeParts(const EnvParams& params, int n, int threads, long physics_steps) {
   const Map map = FindEnvTask(params.task).map(params);
   const RigidModel model = RigidModel::Of(Simulation::FromXml(EnvSceneXml(params, map), "env"));
@@ -116,7 +158,8 @@ void RunRigidBenchmark(std::ostream& out, const BenchSize& size) {
   EnvParams mujoco;  // Hover-v0's defaults: the Crazyflie, 100 Hz, thrust and rates
   EnvParams rigid = mujoco;
   rigid.backend = "rigid";
-  out << "aerobox/Hover-v0 at " << FormatNumber(mujoco.control_rate) << " Hz on the rigid backend (the vehicle "
+  out << "aerobox/Hover-v0 at " << FormatNumber(mujoco.control_rate)
+      << " Hz on the rigid backend (the vehicle "
       << "alone, integrated as MuJoCo integrates it) against MuJoCo's, " << threads
       << " threads, zero actions, episodes ending and resetting as in training; simulated "
          "seconds per wall second: environment steps per second over the control rate. Medians "
@@ -148,18 +191,25 @@ void RunRigidBenchmark(std::ostream& out, const BenchSize& size) {
   }
   // where the time goes, at the largest batch and 1 ms
   const int n = sizes.back();
-  const double per_env_step = 1.0 / Rate(rigid, n, threads, size) * std::min(threads, n);
+  const int used = std::min(threads, n);
+  const double env_rate = Rate(rigid, n, threads, size);
+  const double per_env_step = used / env_rate;  // [s] of a thread per world and environment step
   const long physics = std::lround(rigid.physics_rate / rigid.control_rate);
-  const Parts parts = TimeParts(rigid, n, threads, size.smoke ? 10 : 20000);
-  const double dynamics = parts.dynamics * physics * std::min(threads, n) / per_env_step;
-  const double inner = parts.inner * physics * std::min(threads, n) / per_env_step;
-  out << "\nWhere the rigid backend's time goes at " << n << " worlds and 1 ms (the parts timed "
-      << "alone, from hover, in the same threads; per environment step of one world " << std::fixed
-      << std::setprecision(2) << per_env_step * 1e6 << " us of a thread): dynamics "
-      << std::setprecision(0) << 100 * dynamics << " %, the inner loops (rates, mixer) "
-      << 100 * inner << " %, the rest (drag and wind when on, the action's command, the "
-      << "observation, the reward, termination, resets, threads) " << 100 * (1 - dynamics - inner)
-      << " %.\n"
+  Parts parts = TimeParts(rigid, n, threads, size.smoke ? 10 : 20000);
+  TimeEnvironmentParts(rigid, n, threads, size.smoke ? 10 : 2000, &parts);
+  const double episode_steps = rigid.episode_time * rigid.control_rate;
+  const auto share = [&](double seconds) { return 100.0 * seconds * used / per_env_step; };
+  const double dynamics = share(parts.dynamics * physics), inner = share(parts.inner * physics),
+               command = share(parts.command), task = share(parts.task),
+               reset = share(parts.reset / episode_steps);
+  out << "\nWhere the rigid backend's time goes at " << n << " worlds and 1 ms (each part timed "
+      << "alone in the same threads, from hover; per environment step of one world " << std::fixed
+      << std::setprecision(2) << per_env_step * 1e6 << " us of a thread): " << std::setprecision(0)
+      << "the dynamics " << dynamics << " %, the inner loops (rates, "
+      << "mixer) " << inner << " %, the action's command " << command << " %, the task's "
+      << "observation and reward " << task << " %, resets (one per " << episode_steps << " steps) "
+      << reset << " %, the rest (the shared observation, the loop, drag and wind "
+      << "when on, threads) " << 100 - dynamics - inner - command - task - reset << " %.\n"
       << std::defaultfloat << std::flush;
 }
 
