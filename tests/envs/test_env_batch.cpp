@@ -84,6 +84,24 @@ TEST_CASE("the rigid backend: threads and the batch's size change nothing") {
   CHECK(largest < 1e-4);  // float observations of states within rounding
 }
 
+TEST_CASE("physics_rate sets each backend's step, and a step still holds the control period") {
+  for (const char* backend : {"mujoco", "rigid"}) {
+    CAPTURE(backend);
+    EnvParams params;
+    params.backend = backend;
+    params.physics_rate = 500;
+    EnvBatch batch(params, 1, 1);
+    CHECK(batch.world(0).physics().timestep() == doctest::Approx(0.002).epsilon(1e-12));
+    std::vector<float> obs(static_cast<size_t>(params.ObservationSize()));
+    batch.Reset({1}, obs.data());
+    const double before = batch.world(0).physics().time();
+    const double hover[4] = {0.0, 0.0, 0.0, 0.0};
+    batch.world(0).Step(hover, obs.data());
+    CHECK(batch.world(0).physics().time() - before == doctest::Approx(0.01).epsilon(1e-9));
+    CHECK(batch.world(0).time() == doctest::Approx(0.01));
+  }
+}
+
 TEST_CASE("a bad action is refused before any world steps") {
   EnvParams params;
   EnvBatch batch(params, 2, 2);
