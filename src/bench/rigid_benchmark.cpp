@@ -151,6 +151,31 @@ Parts TimeParts(const EnvParams& params, int n, int threads, long physics_steps)
   return parts;
 }
 
+// Where the rigid backend's time goes for `n` worlds: the parts timed alone against the step.
+void WhereTimeGoes(const EnvParams& rigid, int n, int threads, const BenchSize& size,
+                   std::ostream& out) {
+  const int used = std::min(threads, n);
+  const double env_rate = Rate(rigid, n, threads, size);
+  const double per_env_step = used / env_rate;  // [s] of a thread per world and environment step
+  const long physics = std::lround(rigid.physics_rate / rigid.control_rate);
+  Parts parts = TimeParts(rigid, n, threads, size.smoke ? 10 : 20000);
+  TimeEnvironmentParts(rigid, n, threads, size.smoke ? 10 : 2000, &parts);
+  const double episode_steps = rigid.episode_time * rigid.control_rate;
+  const auto share = [&](double seconds) { return 100.0 * seconds * used / per_env_step; };
+  const double dynamics = share(parts.dynamics * physics), inner = share(parts.inner * physics),
+               command = share(parts.command), task = share(parts.task),
+               reset = share(parts.reset / episode_steps);
+  out << "\nWhere the rigid backend's time goes at " << n << " worlds and 1 ms (each part timed "
+      << "alone in the same threads, from hover; per environment step of one world " << std::fixed
+      << std::setprecision(2) << per_env_step * 1e6 << " us of a thread): " << std::setprecision(0)
+      << "the dynamics " << dynamics << " %, the inner loops (rates, "
+      << "mixer) " << inner << " %, the action's command " << command << " %, the task's "
+      << "observation and reward " << task << " %, resets (one per " << episode_steps << " steps) "
+      << reset << " %, the rest (the shared observation, the loop, drag and wind "
+      << "when on, threads) " << 100 - dynamics - inner - command - task - reset << " %.\n"
+      << std::defaultfloat << std::flush;
+}
+
 }  // namespace
 
 void RunRigidBenchmark(std::ostream& out, const BenchSize& size) {
@@ -189,28 +214,7 @@ void RunRigidBenchmark(std::ostream& out, const BenchSize& size) {
           << std::defaultfloat << std::flush;
     }
   }
-  // where the time goes, at the largest batch and 1 ms
-  const int n = sizes.back();
-  const int used = std::min(threads, n);
-  const double env_rate = Rate(rigid, n, threads, size);
-  const double per_env_step = used / env_rate;  // [s] of a thread per world and environment step
-  const long physics = std::lround(rigid.physics_rate / rigid.control_rate);
-  Parts parts = TimeParts(rigid, n, threads, size.smoke ? 10 : 20000);
-  TimeEnvironmentParts(rigid, n, threads, size.smoke ? 10 : 2000, &parts);
-  const double episode_steps = rigid.episode_time * rigid.control_rate;
-  const auto share = [&](double seconds) { return 100.0 * seconds * used / per_env_step; };
-  const double dynamics = share(parts.dynamics * physics), inner = share(parts.inner * physics),
-               command = share(parts.command), task = share(parts.task),
-               reset = share(parts.reset / episode_steps);
-  out << "\nWhere the rigid backend's time goes at " << n << " worlds and 1 ms (each part timed "
-      << "alone in the same threads, from hover; per environment step of one world " << std::fixed
-      << std::setprecision(2) << per_env_step * 1e6 << " us of a thread): " << std::setprecision(0)
-      << "the dynamics " << dynamics << " %, the inner loops (rates, "
-      << "mixer) " << inner << " %, the action's command " << command << " %, the task's "
-      << "observation and reward " << task << " %, resets (one per " << episode_steps << " steps) "
-      << reset << " %, the rest (the shared observation, the loop, drag and wind "
-      << "when on, threads) " << 100 - dynamics - inner - command - task - reset << " %.\n"
-      << std::defaultfloat << std::flush;
+  WhereTimeGoes(rigid, sizes.back(), threads, size, out);
 }
 
 }  // namespace aerobox
