@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 
-#include "sim/simulation.h"
 #include "vehicle/model_names.h"
 
 namespace aerobox {
@@ -13,23 +11,28 @@ namespace {
 constexpr double kMinVal = 1e-15;  // MuJoCo's mjMINVAL
 constexpr double kMaxVal = 1e10;   // MuJoCo's mjMAXVAL: beyond it a value is "bad"
 
-bool Bad(double x) { return !(x >= -kMaxVal && x <= kMaxVal); }
-bool Bad(const Vec3& v) { return Bad(v.x()) || Bad(v.y()) || Bad(v.z()); }
+// Any component NaN or beyond mjMAXVAL.
+template <typename V>
+bool Bad(const V& v) {
+  return !(v.array().abs() <= kMaxVal).all();
+}
+
+// q as (w, x, y, z), MuJoCo's order, and back.
+Vec4 Wxyz(const Quat& q) { return Vec4(q.w(), q.x(), q.y(), q.z()); }
 
 // MuJoCo's mju_normalize4: to unit length when off by more than mjMINVAL; the identity when
 // too small to say.
-void Normalize4(double q[4]) {
-  const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+void Normalize4(Vec4* q) {
+  const double norm = q->norm();
   if (norm < kMinVal) {
-    q[0] = 1;
-    q[1] = q[2] = q[3] = 0;
+    *q = Vec4(1, 0, 0, 0);
   } else if (std::abs(norm - 1.0) > kMinVal) {
-    for (int i = 0; i < 4; ++i) q[i] /= norm;
+    *q /= norm;
   }
 }
 
 // MuJoCo's mju_quat2Mat.
-Mat3 MatrixOf(const double q[4]) {
+Mat3 MatrixOf(const Vec4& q) {
   const double q00 = q[0] * q[0], q01 = q[0] * q[1], q02 = q[0] * q[2], q03 = q[0] * q[3];
   const double q11 = q[1] * q[1], q12 = q[1] * q[2], q13 = q[1] * q[3];
   const double q22 = q[2] * q[2], q23 = q[2] * q[3], q33 = q[3] * q[3];
@@ -42,20 +45,15 @@ Mat3 MatrixOf(const double q[4]) {
 
 // MuJoCo's mju_quatIntegrate: q = normalised q (x) the rotation of `w` [rad/s, body axes] over
 // `dt` [s].
-void Integrate(double q[4], const Vec3& w, double dt) {
+void Integrate(Vec4* q_wxyz, const Vec3& w, double dt) {
   const double speed = w.norm();
   const Vec3 axis = speed < kMinVal ? Vec3::UnitX() : Vec3(w / speed);
   const double angle = dt * speed;
-  double r[4] = {1, 0, 0, 0};
-  if (angle != 0.0) {
-    const double s = std::sin(0.5 * angle);
-    r[0] = std::cos(0.5 * angle);
-    r[1] = axis.x() * s;
-    r[2] = axis.y() * s;
-    r[3] = axis.z() * s;
-  }
-  Normalize4(q);
-  const double a[4] = {q[0], q[1], q[2], q[3]};
+  Vec4 r(1, 0, 0, 0);
+  if (angle != 0.0) r << std::cos(0.5 * angle), std::sin(0.5 * angle) * axis;
+  Normalize4(q_wxyz);
+  const Vec4 a = *q_wxyz;
+  Vec4& q = *q_wxyz;
   q[0] = a[0] * r[0] - a[1] * r[1] - a[2] * r[2] - a[3] * r[3];
   q[1] = a[0] * r[1] + a[1] * r[0] + a[2] * r[3] - a[3] * r[2];
   q[2] = a[0] * r[2] - a[1] * r[3] + a[2] * r[0] + a[3] * r[1];
@@ -69,11 +67,7 @@ RigidBody::RigidBody(RigidModel model) : made_(model), model_(std::move(model)) 
 void RigidBody::ResetData() {
   time_ = 0.0;
   p_W_ = model_.initial_p_W;
-  const Quat& q = model_.initial_q_WB;
-  q_[0] = q.w();
-  q_[1] = q.x();
-  q_[2] = q.y();
-  q_[3] = q.z();
+  q_ = Wxyz(model_.initial_q_WB);
   v_W_.setZero();
   w_B_.setZero();
   act_.setZero();
@@ -95,25 +89,33 @@ void RigidBody::ScaleVehicle(const VehicleScaling& s) {
   ResetData();
 }
 
-void RigidBody::Warn(const std::string& what) {
+void RigidBody::AddWarning(const std::string& what) {
   if (!warnings_.empty()) warnings_ += "; ";
-  warnings_ += what + " (the rigid backend resets the world, as MuJoCo does)";
+  warnings_ += what;
+}
+
+void RigidBody::Warn(const std::string& what) {
+  AddWarning(what + " (the rigid backend resets the world, as MuJoCo does)");
   const std::string kept = warnings_;
   ResetData();
   warnings_ = kept;
 }
 
+double RigidBody::FloorDistance(const Vec3& p, const Mat3& R) const {
+  // the hull's lowest corner: its centre less the half sizes along R's z row
+  return p.z() - R.row(2).cwiseAbs().dot(model_.hull_half) - model_.floor_z;
+}
+
 void RigidBody::Forward() {
-  Normalize4(q_);
+  Normalize4(&q_);
   const Mat3 R = MatrixOf(q_);
-  // contacts: the hull's lowest corner against the floor, the hull against each box
-  touches_ = false;
-  if (model_.has_floor) {
-    const double reach = R.row(2).cwiseAbs().dot(model_.hull_half);  // the lowest corner's depth
-    touches_ = p_W_.z() - reach - model_.floor_z <= 0.0;
-  }
+  // contacts: the hull's lowest corner against the floor, the hull against each box, in the
+  // pose kept for VehicleContacts
+  contact_p_W_ = p_W_;
+  contact_R_ = R;
+  touches_ = model_.has_floor && FloorDistance(p_W_, R) <= 0.0;
   for (size_t i = 0; i < model_.boxes.size() && !touches_; ++i) {
-    touches_ = Touches(model_.boxes[i], R);
+    touches_ = Overlap(model_.boxes[i], p_W_, R) >= 0.0;
   }
   // actuation: the clamped commands, the thrusts of the motor lag's state
   clamped_ = ctrl_.cwiseMax(model_.command_min).cwiseMin(model_.command_max);
@@ -132,14 +134,13 @@ void RigidBody::Forward() {
 void RigidBody::Step(const Vec4& thrust_commands) {
   ctrl_ = thrust_commands;
   // MuJoCo's checks before and after its forward pass, each a reset when it fails
-  if (Bad(p_W_) || Bad(Vec3(q_[0], q_[1], q_[2])) || Bad(q_[3])) {
+  if (Bad(p_W_) || Bad(q_)) {
     Warn("NaN, Inf or huge value in the position");
   } else if (Bad(v_W_) || Bad(w_B_)) {
     Warn("NaN, Inf or huge value in the velocity");
   }
-  if (Bad(ctrl_.head<3>()) || Bad(ctrl_[3])) {
-    if (!warnings_.empty()) warnings_ += "; ";
-    warnings_ += "NaN, Inf or huge value in the rotor commands (all set to 0)";
+  if (Bad(ctrl_)) {
+    AddWarning("NaN, Inf or huge value in the rotor commands (all set to 0)");
     ctrl_.setZero();
   }
   Forward();
@@ -155,7 +156,7 @@ void RigidBody::Step(const Vec4& thrust_commands) {
   v_W_ += dt * acc_W_;
   w_B_ += dt * alpha_B_;
   p_W_ += dt * v_W_;
-  Integrate(q_, w_B_, dt);
+  Integrate(&q_, w_B_, dt);
   time_ += dt;
 }
 
@@ -175,7 +176,7 @@ void RigidBody::SetRotorThrusts(const Vec4& thrusts) {
 State RigidBody::VehicleState() const {
   State s;
   s.p_W = p_W_;
-  s.q_WB = Quat(q_[0], q_[1], q_[2], q_[3]);
+  s.q_WB = Quat(q_[0], q_[1], q_[2], q_[3]);  // w, x, y, z
   s.v_W = v_W_;
   s.w_B = w_B_;
   return s;
@@ -183,11 +184,7 @@ State RigidBody::VehicleState() const {
 
 void RigidBody::SetVehicleState(const State& state) {
   p_W_ = state.p_W;
-  const Quat q = state.q_WB.normalized();
-  q_[0] = q.w();
-  q_[1] = q.x();
-  q_[2] = q.y();
-  q_[3] = q.z();
+  q_ = Wxyz(state.q_WB.normalized());
   v_W_ = state.v_W;
   w_B_ = state.w_B;
   Forward();
@@ -199,49 +196,50 @@ std::string RigidBody::TakeNewWarnings() {
   return text;
 }
 
-bool RigidBody::Touches(const Aabb& box, const Mat3& R) const {
+double RigidBody::Overlap(const Aabb& box, const Vec3& p, const Mat3& R) const {
   // separating axes of an oriented box (centre p, axes R's columns, half sizes h) and an
-  // axis-aligned one (centre c, half sizes e): the 3 + 3 face normals and their 9 cross products;
-  // touching (a separation of exactly 0) counts, as MuJoCo's zero margin does
-  const Vec3 d = box.Center() - p_W_;
+  // axis-aligned one (centre c, half sizes e): the 3 + 3 face normals and their 9 cross
+  // products; along each unit axis the boxes overlap by their radii less the centres' distance.
+  // The least overlap is the depth (the boxes touch when it is >= 0, as MuJoCo's zero margin
+  // counts touching); the first negative one, a separation, ends the test
+  const Vec3 d = box.Center() - p;
   const Vec3 e = box.HalfSize();
   const Vec3& h = model_.hull_half;
-  const Mat3 A = R.cwiseAbs();
-  const auto separated = [&](const Vec3& axis) {
+  const Vec3 world = e + R.cwiseAbs() * h - d.cwiseAbs();  // along the world's axes, cheaply
+  double least = world.minCoeff();
+  const auto along = [&](const Vec3& axis) {
     const double radius = e.dot(axis.cwiseAbs()) + h.dot((R.transpose() * axis).cwiseAbs());
-    return std::abs(d.dot(axis)) > radius;
+    least = std::min(least, radius - std::abs(d.dot(axis)));
+    return least >= 0.0;
   };
-  // the world's axes, cheaply first (the hull's extent along each is A h)
-  if (((d.cwiseAbs() - e - A * h).array() > 0.0).any()) return false;
+  if (least < 0.0) return least;
   for (int j = 0; j < 3; ++j) {
-    if (separated(R.col(j))) return false;
+    if (!along(R.col(j))) return least;
   }
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
       const Vec3 axis = Vec3::Unit(i).cross(R.col(j));
-      if (axis.squaredNorm() < 1e-20) continue;  // parallel: covered by the faces
-      if (separated(axis)) return false;
+      const double norm = axis.norm();
+      if (norm < 1e-10) continue;  // parallel: covered by the faces
+      if (!along(axis / norm)) return least;
     }
   }
-  return true;
+  return least;
 }
 
 std::vector<VehicleContact> RigidBody::VehicleContacts() const {
   std::vector<VehicleContact> contacts;
-  const Mat3 R = MatrixOf(q_);
-  if (model_.has_floor) {
-    const double reach = R.row(2).cwiseAbs().dot(model_.hull_half);
-    const double distance = p_W_.z() - reach - model_.floor_z;
-    if (distance <= 0.0) {
-      contacts.push_back(
-          {model_names::kFloorGeom, Vec3(p_W_.x(), p_W_.y(), model_.floor_z), distance});
-    }
+  const Vec3& p = contact_p_W_;
+  const Mat3& R = contact_R_;
+  const double floor = model_.has_floor ? FloorDistance(p, R) : 1.0;
+  if (floor <= 0.0) {
+    contacts.push_back({model_names::kFloorGeom, Vec3(p.x(), p.y(), model_.floor_z), floor});
   }
   for (size_t i = 0; i < model_.boxes.size(); ++i) {
-    if (!Touches(model_.boxes[i], R)) continue;
+    const double depth = Overlap(model_.boxes[i], p, R);
+    if (depth < 0.0) continue;
     const Aabb& b = model_.boxes[i];
-    const Vec3 nearest = p_W_.cwiseMax(b.min).cwiseMin(b.max);
-    contacts.push_back({model_.box_names[i], nearest, -0.0});
+    contacts.push_back({model_.box_names[i], p.cwiseMax(b.min).cwiseMin(b.max), -depth});
   }
   return contacts;
 }

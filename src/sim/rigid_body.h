@@ -78,20 +78,28 @@ class RigidBody : public VehiclePhysics {
   void Forward();
   // A state or an acceleration that is not finite (or beyond 1e10): MuJoCo's reset.
   void Warn(const std::string& what);
-  // The hull against `box`, touching included (a separating-axis test).
-  bool Touches(const Aabb& box, const Mat3& R) const;
+  void AddWarning(const std::string& what);
+  // [m] from the hull's lowest corner down to the floor (negative: below it), the hull at p
+  // with attitude R.
+  double FloorDistance(const Vec3& p, const Mat3& R) const;
+  // [m] how deep the hull (at p, attitude R) and `box` overlap along the axis they overlap
+  // least (a separating-axis test): >= 0 when they touch; negative when apart (then only some
+  // separation, not the distance).
+  double Overlap(const Aabb& box, const Vec3& p, const Mat3& R) const;
 
   RigidModel made_;   // as read
   RigidModel model_;  // as scaled
   double time_ = 0.0;
   Vec3 p_W_, v_W_, w_B_;
-  double q_[4] = {1, 0, 0, 0};  // w, x, y, z (MuJoCo's order and arithmetic)
-  Vec4 act_ = Vec4::Zero();     // the motor lag's state
-  Vec4 ctrl_ = Vec4::Zero();    // the last commands
+  Vec4 q_ = Vec4(1, 0, 0, 0);  // w, x, y, z (MuJoCo's order and arithmetic)
+  Vec4 act_ = Vec4::Zero();    // the motor lag's state
+  Vec4 ctrl_ = Vec4::Zero();   // the last commands
   Vec3 force_W_ = Vec3::Zero(), torque_W_ = Vec3::Zero();
   Vec4 clamped_ = Vec4::Zero();
   Vec3 acc_W_ = Vec3::Zero(), alpha_B_ = Vec3::Zero();
   bool touches_ = false;
+  Vec3 contact_p_W_ = Vec3::Zero();  // the pose the contacts were found in
+  Mat3 contact_R_ = Mat3::Identity();
   std::string warnings_;
 };
 

@@ -116,7 +116,7 @@ TEST_CASE("a scaled vehicle (domain randomisation) is scaled alike") {
 TEST_CASE("the first touching step is MuJoCo's, against the floor and random boxes") {
   const QuadParams vehicle = *BuiltinVehicle("crazyflie");
   Draw d{std::mt19937_64(5)};
-  int touched = 0;
+  int touched = 0, floors = 0;
   for (int trial = 0; trial < 40; ++trial) {
     CAPTURE(trial);
     Map map;
@@ -155,10 +155,19 @@ TEST_CASE("the first touching step is MuJoCo's, against the floor and random box
     CHECK(first_sim == first_rigid);
     if (first_sim >= 0) {
       ++touched;
-      CHECK(sim.VehicleContacts().front().other_geom == rigid.VehicleContacts().front().other_geom);
+      const VehicleContact a = sim.VehicleContacts().front(), b = rigid.VehicleContacts().front();
+      CHECK(a.other_geom == b.other_geom);
+      // the depth in the state that touched: the floor's, MuJoCo's deepest corner; a box's, the
+      // least overlap (MuJoCo's box-box contacts report it, or half of it, here)
+      double deepest = 0.0;
+      for (const VehicleContact& c : sim.VehicleContacts()) deepest = std::min(deepest, c.distance);
+      CHECK(b.distance <= 0.0);
+      if (a.other_geom == "floor") CHECK(b.distance == doctest::Approx(deepest).epsilon(1e-9));
+      floors += a.other_geom == "floor";
     }
   }
   CHECK(touched >= 30);  // most throws hit something
+  CHECK(floors >= 10);
 }
 
 TEST_CASE("a state that is no longer finite is a warning on both") {
