@@ -174,6 +174,17 @@ void WhereTimeGoes(const EnvParams& rigid, int n, int threads, const BenchSize& 
       << reset << " %, the rest (the shared observation, the loop, drag and wind "
       << "when on, threads) " << 100 - dynamics - inner - command - task - reset << " %.\n"
       << std::defaultfloat << std::flush;
+  // the forces of the air: drag, and a mean wind with Dryden turbulence, against still air
+  EnvParams windy = rigid;
+  windy.drag = true;
+  windy.wind_speed = 3.0;
+  windy.wind_turbulence = 1.0;
+  const double windy_step = used / Rate(windy, n, threads, size);
+  out << "With drag and wind (up to 3 m/s, Dryden turbulence up to 1 m/s) a step takes "
+      << std::fixed << std::setprecision(2) << windy_step * 1e6 << " us of a thread: the air's "
+      << "forces add " << std::setprecision(0) << 100 * (windy_step / per_env_step - 1)
+      << " % to the still-air step.\n"
+      << std::defaultfloat << std::flush;
 }
 
 }  // namespace
