@@ -66,7 +66,7 @@ FlatOutput Setpoints::At(double t, double tr) {
     if (current_.heading) {
       std::tie(yaw_, setpoint.yaw_rate) = current_.heading(tr);
     } else if (face_travel_) {
-      const Turn turn = AlongTravel(t, tr, setpoint.v_W.head<2>().norm());
+      const Turn turn = AlongTravel(t, tr, setpoint.p_W, setpoint.v_W.head<2>().norm());
       yaw_ = turn.yaw;
       setpoint.yaw_rate = turn.rate;
       waiting_ =
@@ -86,7 +86,7 @@ FlatOutput Setpoints::At(double t, double tr) {
   return setpoint;
 }
 
-Setpoints::Turn Setpoints::AlongTravel(double t, double tr, double speed) {
+Setpoints::Turn Setpoints::AlongTravel(double t, double tr, const Vec3& here, double speed) {
   constexpr double kPi = 3.14159265358979323846;
   constexpr double kStep = 0.02;     // [s] along the reference
   constexpr double kHorizon = 3.0;   // [s] looked ahead at most
@@ -96,7 +96,6 @@ Setpoints::Turn Setpoints::AlongTravel(double t, double tr, double speed) {
   const double distance = std::clamp(speed * kLookTime, kNearest, look_ahead_);
   const double elapsed = std::max(0.0, t - yaw_time_);
   yaw_time_ = t;
-  const Vec3 here = current_.evaluate(tr, kPosition);
   Vec3 ahead = here;
   for (double s = tr + kStep; s <= tr + kHorizon; s += kStep) {
     ahead = current_.evaluate(std::min(s, current_.duration), kPosition);

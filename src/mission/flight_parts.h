@@ -71,14 +71,15 @@ class Setpoints {
   bool waiting() const { return waiting_; }
 
  private:
-  // The yaw along the travel at `tr`: toward the reference look_ahead ahead (nearer while the
-  // reference's horizontal `speed` [m/s] is slow: the way of its next second, at least 0.3 m),
-  // turned from the last at most yaw_rate since it was set (at flight time `t`); the rate it
-  // turns at; and how far it has still to turn [rad] (0 when there is no way ahead to turn to).
+  // The yaw along the travel at `tr` (the reference `here` [m]): toward the reference look_ahead
+  // ahead (nearer while the reference's horizontal `speed` [m/s] is slow: the way of its next
+  // second, at least 0.3 m), turned from the last at most yaw_rate since it was set (at flight time
+  // `t`); the rate it turns at; and how far it has still to turn [rad] (0 when there is no way
+  // ahead to turn to).
   struct Turn {
     double yaw, rate, left;
   };
-  Turn AlongTravel(double t, double tr, double speed);
+  Turn AlongTravel(double t, double tr, const Vec3& here, double speed);
 
   Reference current_;
   bool face_travel_;
