@@ -27,6 +27,7 @@ import time
 import numpy as np
 import torch
 from stable_baselines3 import PPO
+from stable_baselines3.common.logger import Logger
 from stable_baselines3.common.vec_env import VecNormalize
 
 from aerobox.envs import HoverEnv, HoverVectorEnv
@@ -91,6 +92,9 @@ def main(argv=None):
                                               max(1, args.steps // args.envs)))
     settings["batch_size"] = min(settings["batch_size"], settings["n_steps"] * args.envs)
     model = PPO("MlpPolicy", normalise, seed=args.seed, verbose=0, **settings)
+    # a logger of its own, with no outputs: learn() otherwise makes an empty SB3-<time> folder
+    # in the temporary directory at each call
+    model.set_logger(Logger(folder=None, output_formats=[]))
     begin, done = time.perf_counter(), 0
     while done < args.steps:
         chunk = min(args.eval_every, args.steps - done)
