@@ -21,6 +21,28 @@ using Clock = std::chrono::steady_clock;
 const char* const kRetry = "retry after braking";
 // the trajectory within the stopping distance meets space the depth camera has not seen
 const char* const kUnknownAhead = "unknown ahead";
+// the trajectory ends where the camera had seen the path to; it has seen further since
+const char* const kSeenFurther = "seen further";
+
+constexpr double kNear = 0.3;       // [m] nearer than this the camera cannot see beside the vehicle
+constexpr double kBackoff = 0.1;    // [m] a committed trajectory's end before the unseen
+constexpr double kExtend = 0.5;     // [m] seen beyond it: the trajectory is extended
+constexpr double kWalkStep = 0.05;  // [m] along a path, half a default cell
+
+// The point `arc` [m] along the polyline `path` (its end beyond), and the vertices before it.
+std::vector<Vec3> PathHead(const std::vector<Vec3>& path, double arc) {
+  std::vector<Vec3> head = {path.front()};
+  for (size_t i = 1; i < path.size(); ++i) {
+    const double length = (path[i] - path[i - 1]).norm();
+    if (arc < length) {
+      head.push_back(path[i - 1] + (arc / length) * (path[i] - path[i - 1]));
+      return head;
+    }
+    arc -= length;
+    head.push_back(path[i]);
+  }
+  return head;
+}
 
 double Seconds(Clock::time_point since) {
   return std::chrono::duration<double>(Clock::now() - since).count();
@@ -36,6 +58,24 @@ Reference Splice(const Reference& current, double t_switch, const PiecewiseTraje
     return next.Evaluate3(std::min(t - t_switch, next.duration()), derivative);
   };
   return r;
+}
+
+// [m] along the polyline `path` to its point nearest `p`.
+double ArcNearest(const std::vector<Vec3>& path, const Vec3& p) {
+  double arc = 0.0, here = 0.0, nearest = std::numeric_limits<double>::infinity();
+  for (size_t i = 1; i < path.size(); ++i) {
+    const Vec3 d = path[i] - path[i - 1];
+    const double length = d.norm();
+    const double along =
+        length > 0 ? std::clamp((p - path[i - 1]).dot(d) / (length * length), 0.0, 1.0) : 0.0;
+    const double distance = (path[i - 1] + along * d - p).norm();
+    if (distance < nearest) {
+      nearest = distance;
+      here = arc + along * length;
+    }
+    arc += length;
+  }
+  return here;
 }
 
 TrajectoryWorld ViewOf(const CollisionWorld& world) {
@@ -187,6 +227,10 @@ Replanner::Replanner(const Map& map, const std::vector<bool>& unknown,
     for (const Box& box : map_.boxes) extents_.push_back(box.extent);
     camera_.emplace(sensing_.Camera(), StreamSeed(seed_, SeedStream::kDepthCamera));
     grid_ = std::make_shared<OccupancyGrid>(map_.bounds, sensing_.map);
+    // a cell that rays grazing a face have cleared can still hold that face: with a map, every
+    // clearance grows by half a cell
+    planning_.clearance += 0.5 * sensing_.map.resolution;
+    trajectory_.clearance += 0.5 * sensing_.map.resolution;
   }
   Rebuild();
 }
@@ -281,6 +325,7 @@ std::optional<Reference> Replanner::Update(double t, double tr, const State& sta
   if (grid_ && UnknownAhead(current, tr, state.v_W.norm())) {
     return Replan(t, tr, goals_reached, current, kUnknownAhead);
   }
+  if (grid_ && SeenFurther(state.p_W)) return Replan(t, tr, goals_reached, current, kSeenFurther);
   return std::nullopt;
 }
 
@@ -322,7 +367,6 @@ bool Replanner::UnknownAhead(const Reference& reference, double from, double spe
   const double decel = BrakingDeceleration(params_.max_tilt);
   const double reach =
       speed * speed / (2 * decel) + speed * (1.0 / sensing_.rate + replan_.horizon);
-  constexpr double kNear = 0.3;   // [m] nearer than this the camera cannot see beside it
   constexpr double kStep = 0.02;  // [s]
   Vec3 previous = reference.evaluate(std::min(from, reference.duration), kPosition);
   double length = 0.0;
@@ -331,10 +375,55 @@ bool Replanner::UnknownAhead(const Reference& reference, double from, double spe
     const Vec3 p = reference.evaluate(at, kPosition);
     length += (p - previous).norm();
     previous = p;
-    if (length >= kNear && length <= reach && grid_->At(p) == Occupancy::kUnknown) return true;
+    if (length >= kNear && length <= reach && !Seen(p)) return true;
     if (at >= reference.duration) break;
   }
   return false;
+}
+
+bool Replanner::Seen(const Vec3& p) const {
+  // every cell the vehicle's box, grown by the trajectory's clearance, overlaps there (less a
+  // centimetre: not the cells beyond ones it just touches): its centre's alone lets the body
+  // reach into the unknown beside a free cell (at 0.1 m cells, most of a Tello's width)
+  const Vec3 half = trajectory_.Margin().array() - 0.01;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Vec3 sign(corner & 1 ? 1 : -1, corner & 2 ? 1 : -1, corner & 4 ? 1 : -1);
+    if (grid_->At(p + sign.cwiseProduct(half)) == Occupancy::kUnknown) return false;
+  }
+  return true;
+}
+
+double Replanner::FirstUnseen(const std::vector<Vec3>& path, double from, double to,
+                              bool* blocked) const {
+  const auto stop = [&](const Vec3& p) {
+    if (blocked && !trajectory_world_->IsPointFree(p)) return *blocked = true;
+    return !Seen(p);
+  };
+  double arc = 0.0;  // [m] at path[i - 1]
+  for (size_t i = 1; i < path.size(); ++i) {
+    const Vec3 d = path[i] - path[i - 1];
+    const double length = d.norm();
+    for (double s = std::max(0.0, from - arc); s < length && arc + s <= to; s += kWalkStep) {
+      if (stop(path[i - 1] + (s / length) * d)) return arc + s;
+    }
+    arc += length;
+    if (arc > to) return std::numeric_limits<double>::infinity();
+  }
+  return stop(path.back()) ? arc : std::numeric_limits<double>::infinity();
+}
+
+bool Replanner::SeenFurther(const Vec3& p) const {
+  if (!committed_) return true;  // the flight's first trajectory: not cut yet
+  if (std::isinf(*committed_)) return false;
+  // the path beyond the reference's end now blocked (the unseen was a box), or seen further;
+  // the first kNear beyond the vehicle are its own
+  const double here = ArcNearest(path_, p);
+  const double seen = *committed_ + kBackoff + kExtend;
+  bool blocked = false;
+  const double unseen = FirstUnseen(path_, std::max(*committed_, here + kNear), seen, &blocked);
+  // a vehicle at the reference's end creeps on by what it may count as its own
+  const bool waiting = here > *committed_ - kBackoff && unseen - kBackoff > *committed_ + kBackoff;
+  return unseen > seen || blocked || waiting;
 }
 
 std::optional<std::vector<Vec3>> Replanner::FindPath(const Vec3& start, int goals_reached,
@@ -456,6 +545,7 @@ std::optional<Reference> Replanner::Replan(double t, double tr, int goals_reache
     braking_ = false;
     attempts_ = 0;
     path_ = next->path;
+    committed_ = next->committed;
     ReplacedBy(next->trajectory, &event);
     return done(std::move(spliced), trigger == kRetry ? "replanned after braking" : "replanned");
   }
@@ -536,11 +626,17 @@ std::optional<Replanner::Continuation> Replanner::Continue(const StartState& sta
     if (!path) continue;
     path->insert(path->begin(), head.begin(), head.end() - 1);
     event->path_length = PathLength(*path);
+    // with a depth camera, the trajectory ends at rest before the first space not seen: the
+    // vehicle can always stop in what it has seen (the first kNear are the vehicle's own)
+    const double unseen = grid_ ? FirstUnseen(*path, kNear, std::numeric_limits<double>::infinity())
+                                : std::numeric_limits<double>::infinity();
+    const double committed = unseen - kBackoff;
     const Clock::time_point solving = Clock::now();
-    TrajectoryResult next = Continue(start, *path, escape);
+    TrajectoryResult next =
+        Continue(start, std::isinf(unseen) ? *path : PathHead(*path, committed), escape);
     event->solve_time += Seconds(solving);
     if (next.status == TrajectoryStatus::kSolved) {
-      return Continuation{std::move(*path), std::move(next.trajectory)};
+      return Continuation{std::move(*path), std::move(next.trajectory), committed};
     }
   }
   return std::nullopt;

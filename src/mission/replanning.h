@@ -110,7 +110,10 @@ bool SeesBox(const SensingParams& sensing, const State& state, const Aabb& box);
 
 // The loop's reference updater (FlightLoop::update_reference): senses at its rate, and when a
 // newly revealed box blocks the reference's rest, plans and splices a continuation, or brakes
-// and keeps trying.
+// and keeps trying. With a depth camera, unknown space is free to the planner, but each new
+// reference ends at rest before the first point of its path where the vehicle (grown by its
+// clearance) would overlap a cell the camera has not seen, and is extended as the camera sees
+// further: the vehicle can always stop within what it has seen.
 class Replanner {
  public:
   // `planning` and `trajectory`: the collision parameters of the planner and of trajectories;
@@ -158,6 +161,16 @@ class Replanner {
   // kDepth: true when the reference from `from` [s], within the distance a vehicle at `speed`
   // [m/s] needs to stop, passes a cell the camera has not seen.
   bool UnknownAhead(const Reference& reference, double from, double speed) const;
+  // Whether the depth camera has seen every cell the vehicle's box overlaps at `p` [m].
+  bool Seen(const Vec3& p) const;
+  // kDepth: the first point along `path` between `from` and `to` [m of its length] (every
+  // kWalkStep) where the vehicle's box would overlap an unseen cell, or with `blocked`, where
+  // the trajectory's world is not free (and *blocked set); infinity when none.
+  double FirstUnseen(const std::vector<Vec3>& path, double from, double to,
+                     bool* blocked = nullptr) const;
+  // kDepth: the camera now sees kExtend of the path beyond where the reference ends (or the
+  // reference is the flight's first, not yet cut to what was seen); the vehicle at `p` [m].
+  bool SeenFurther(const Vec3& p) const;
   // A path from `start` through the goals still ahead: first the local repair, then leg by leg.
   std::optional<std::vector<Vec3>> FindPath(const Vec3& start, int goals_reached,
                                             ReplanEvent* event) const;
@@ -182,6 +195,7 @@ class Replanner {
   struct Continuation {
     std::vector<Vec3> path;
     PiecewiseTrajectory trajectory;
+    double committed;  // [m] along `path` where the trajectory ends (infinity: at its end)
   };
   std::optional<Continuation> Continue(const StartState& start, int goals_reached,
                                        ReplanEvent* event) const;
@@ -199,6 +213,9 @@ class Replanner {
   ReplanParams replan_;
   std::vector<Vec3> goals_;
   std::vector<Vec3> path_;  // the path the reference flies, updated with each replan
+  // kDepth: [m] along path_ where the reference ends, before what the camera had not seen
+  // (infinity: at the path's end; nothing: the flight's first reference, not yet cut)
+  std::optional<double> committed_;
   std::uint64_t seed_;
   std::vector<double> revealed_at_;
   std::vector<double> revealed_distance_;

@@ -350,4 +350,54 @@ TEST_CASE("a vehicle at rest within the clearance of a box just found backs off 
   CHECK(next->evaluate(next->duration, kPosition).isApprox(to, 1e-3));
 }
 
+TEST_CASE("depth: the reference ends at rest before what the camera has not seen, and goes on") {
+  // an empty 12 m room seen by a 5 m depth camera: the straight way to the goal 8 m ahead
+  // leaves what the first frame saw about 5 m out
+  Map room;
+  room.name = "empty room";
+  room.bounds = {Vec3(0, 0, 0), Vec3(12, 4, 3)};
+  const Vec3 from(1, 2, 1.5), to(9, 2, 1.5);
+  Reference ahead;  // from rest, straight to the goal
+  ahead.duration = 6.0;
+  ahead.evaluate = [from, to](double t, int derivative) -> Vec3 {
+    const double s = std::min(t, 6.0) / 6.0;
+    if (derivative == kPosition) return from + (to - from) * (3 * s * s - 2 * s * s * s);
+    if (derivative == kVelocity) return (to - from) * (6 * s - 6 * s * s) / 6.0;
+    return Vec3::Zero();
+  };
+  SensingParams sensing;
+  sensing.kind = SensingParams::Kind::kDepth;
+  sensing.range = 5.0;
+  Replanner replanner(room, {}, CollisionParams{}, CollisionParams{Vec3(0.1, 0.1, 0.05), 0.05},
+                      PlannerConfig{}, GeneratorConfig{}, sensing, ReplanParams{}, {to}, {from, to},
+                      1);
+  State state;
+  state.p_W = from;
+  const std::optional<Reference> first = replanner.Update(0.0, 0.0, state, 0, ahead);
+  REQUIRE(first.has_value());
+  REQUIRE(replanner.events().size() == 1);
+  CHECK(replanner.events()[0].trigger == "seen further");
+  // it stops short of the goal, at rest, and never passes a cell the camera has not seen
+  const Vec3 end = first->evaluate(first->duration, kPosition);
+  MESSAGE("the first reference ends at x = " << end.x() << " m");
+  CHECK(first->evaluate(first->duration, kVelocity).norm() < 1e-6);
+  CHECK(end.x() > 4.0);
+  CHECK(end.x() < 6.0);
+  int unseen = 0;
+  for (double t = 0; t <= first->duration; t += 0.02) {
+    const Vec3 p = first->evaluate(t, kPosition);
+    unseen += (p - from).norm() > 0.3 && replanner.occupancy()->At(p) == Occupancy::kUnknown;
+  }
+  CHECK(unseen == 0);
+  // nothing new seen from the same place: it keeps the reference
+  CHECK_FALSE(replanner.Update(0.04, 0.04, state, 0, *first).has_value());
+  // from the end, at rest, the camera sees the rest of the way: the reference goes on to the goal
+  state.p_W = end;
+  const std::optional<Reference> second =
+      replanner.Update(first->duration, first->duration, state, 0, *first);
+  REQUIRE(second.has_value());
+  CHECK(replanner.events().back().trigger == "seen further");
+  CHECK(second->evaluate(second->duration, kPosition).isApprox(to, 1e-3));
+}
+
 }  // namespace aerobox
