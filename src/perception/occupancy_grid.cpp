@@ -158,29 +158,28 @@ int OccupancyGrid::Insert(const DepthImage& image, double range, const std::vect
     if (CellOf(ends_[k], &ix, &iy, &iz)) Update(Index(ix, iy, iz), kHit);
   }
   // then the free space before each ray's end: one ray per end cell (OctoMap's `discretize`),
-  // the first pixel's, so that the many pixels on a near surface walk the same cells once. Keys:
-  // 2 x the end's cell (+ 1 for a ray that hit nothing), above them one of its own for an end
-  // beyond the grid by more than a cell (rays to it differ too much); the pixel below them.
-  keys_.clear();
-  const std::uint64_t own = 2 * static_cast<std::uint64_t>(cells_.size());
+  // the first pixel's, so that the many pixels on a near surface walk the same cells once; a ray
+  // that hit nothing apart from one that hit something there, and a ray whose end lies beyond
+  // the grid by more than a cell on its own (rays to it differ too much). Each cell changes once
+  // a frame, and every walk only clears: the order of the walks does not matter.
+  if (walked_.size() != cells_.size()) walked_.assign(cells_.size(), 0);
+  const std::uint32_t stamp = frame_ << 2;  // the two low bits: a surface's ray, a ray to range
   for (size_t k = 0; k < pixels; ++k) {
     const bool surface = image.depth[k] > 0.0f;
     if (!surface && image.hit[k] != kNoReturn) continue;  // dropped: says nothing
     const Vec3& p = ends_[k];
-    int ix, iy, iz;
-    CellOf(p, &ix, &iy, &iz);  // clamped to the grid
     const bool near_grid = (p.array() >= bounds_.min.array() - resolution_).all() &&
                            (p.array() <= bounds_.max.array() + resolution_).all();
-    const std::uint64_t key = near_grid ? 2 * static_cast<std::uint64_t>(Index(ix, iy, iz))
-                                        : own + 2 * static_cast<std::uint64_t>(k);
-    keys_.push_back(((key + (surface ? 0 : 1)) << kPixelBits) | k);
-  }
-  std::sort(keys_.begin(), keys_.end());
-  for (size_t i = 0; i < keys_.size(); ++i) {
-    const std::uint64_t key = keys_[i] >> kPixelBits;
-    if (i > 0 && key == keys_[i - 1] >> kPixelBits) continue;
-    const size_t k = static_cast<size_t>(keys_[i] & ((std::uint64_t{1} << kPixelBits) - 1));
-    Clear(image.origin_W, ends_[k], (key & 1) != 0);
+    if (near_grid) {
+      int ix, iy, iz;
+      CellOf(p, &ix, &iy, &iz);  // clamped to the grid
+      std::uint32_t& mark = walked_[static_cast<size_t>(Index(ix, iy, iz))];
+      const std::uint32_t kind = surface ? 1 : 2;
+      if ((mark & ~3u) != stamp) mark = stamp;
+      if (mark & kind) continue;
+      mark |= kind;
+    }
+    Clear(image.origin_W, p, !surface);
   }
   return static_cast<int>(std::max(0L, occupied_ - before));
 }

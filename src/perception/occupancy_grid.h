@@ -81,9 +81,10 @@ class OccupancyGrid {
   mutable std::vector<long> dirty_columns_;
   mutable std::set<long> columns_with_runs_;  // sorted
   mutable int runs_grown_ = -1;               // the `columns` they were made with (-1: none)
-  static constexpr int kPixelBits = 24;       // a frame's pixels: fewer than 2^24 (4096 x 4096)
   std::vector<Vec3> ends_;                    // this frame's: each pixel's ray's end [m]
-  std::vector<std::uint64_t> keys_;           // ... its end cell's key, then the pixel
+  // per cell, the last frame a ray ending there was walked (frame << 2), with a bit for a ray
+  // that hit a surface (1) and one for a ray to the range (2)
+  std::vector<std::uint32_t> walked_;
   long occupied_ = 0, free_ = 0;
 };
 
