@@ -315,6 +315,13 @@ std::optional<Reference> Replanner::Update(double t, double tr, const State& sta
   if (changed && !camera_) Rebuild();
   if (braking_) {
     if (attempts_ >= replan_.max_attempts) return std::nullopt;
+    // at rest with nothing new known, an attempt would repeat the last one: the same start,
+    // the same world and the same seed
+    const long known = grid_ ? grid_->free_count() + grid_->occupied_count() : revealed_count();
+    const bool still = state.v_W.norm() < 0.05;  // [m/s]
+    if (still && retried_still_ && known == known_at_retry_) return std::nullopt;
+    retried_still_ = still;
+    known_at_retry_ = known;
     return Replan(t, tr, goals_reached, current, kRetry);
   }
   if (changed) {

@@ -228,6 +228,8 @@ class Replanner {
   double next_sense_ = 0.0;
   bool braking_ = false;  // the last attempt found nothing: the reference brakes to a stop
   int attempts_ = 0;
+  bool retried_still_ = false;  // the last attempt while braked was made at rest ...
+  long known_at_retry_ = 0;     // ... knowing this many cells (or boxes)
   std::vector<ReplanEvent> events_;
   void Rebuild();
 };

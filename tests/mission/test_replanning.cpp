@@ -322,6 +322,47 @@ TEST_CASE("a vehicle whose every stop ahead is blocked still brakes rather than 
   CHECK(next->evaluate(next->duration, kPosition).x() > 4.2);
 }
 
+TEST_CASE("a braked vehicle at rest does not repeat a search that found nothing") {
+  // a wall across the whole room found 2 m ahead of a vehicle setting off: no path past it;
+  // once the vehicle is at rest, another search would have the same start, world and seed
+  Planners().Register("counting_at_rest", [](const PlannerConfig&, const PlannerContext& context) {
+    const PlannerConfig rrt{"rrt_star", {}};
+    return std::unique_ptr<Planner>(std::make_unique<CountingPlanner>(MakePlanner(rrt, context)));
+  });
+  const Vec3 from(3, 2, 1.5), to(9, 2, 1.5);
+  Reference ahead;  // from rest, straight through the wall
+  ahead.duration = 4.0;
+  ahead.evaluate = [from, to](double t, int derivative) -> Vec3 {
+    const double s = std::min(t, 4.0) / 4.0;
+    if (derivative == kPosition) return from + (to - from) * (3 * s * s - 2 * s * s * s);
+    if (derivative == kVelocity) return (to - from) * (6 * s - 6 * s * s) / 4.0;
+    return Vec3::Zero();
+  };
+  SensingParams sensing;
+  sensing.range = 3.0;
+  Replanner replanner(WallRoom(4.0), {true}, CollisionParams{},
+                      CollisionParams{Vec3(0.1, 0.1, 0.05), 0.05},
+                      PlannerConfig{"counting_at_rest", {}}, GeneratorConfig{}, sensing,
+                      ReplanParams{}, {to}, {from, to}, 1);
+  State state;
+  state.p_W = from;
+  counted_plans = 0;
+  const std::optional<Reference> brake = replanner.Update(0.0, 0.0, state, 0, ahead);
+  REQUIRE(brake.has_value());
+  REQUIRE(replanner.events().size() == 1);
+  CHECK(replanner.events()[0].outcome == "braking (no path)");
+  CHECK(counted_plans >= 1);
+  // at rest at the brake's end: the first attempt searches, then none while nothing new is known
+  state.p_W = brake->evaluate(brake->duration, kPosition);
+  const auto attempt = [&](int i) {
+    CHECK_FALSE(replanner.Update(0.04 * i, brake->duration + 0.04 * i, state, 0, *brake));
+  };
+  attempt(1);
+  const int searched = counted_plans;
+  for (int i = 2; i <= 10; ++i) attempt(i);
+  CHECK(counted_plans == searched);
+}
+
 TEST_CASE("a vehicle at rest within the clearance of a box just found backs off and replans") {
   // a half wall found 2 cm from the body of a vehicle hovering before it: the trajectory's
   // clearance (0.05 m) no longer holds where it is, so no plan may start there
