@@ -286,6 +286,20 @@ Map WallRoom(double wall_end) {
   return map;
 }
 
+// From rest at `from` to rest at `to` [m] along the straight line between them in `duration`
+// [s] (a cubic in time), at rest there after.
+Reference FromRest(const Vec3& from, const Vec3& to, double duration) {
+  Reference r;
+  r.duration = duration;
+  r.evaluate = [from, to, duration](double t, int derivative) -> Vec3 {
+    const double s = std::min(t, duration) / duration;
+    if (derivative == kPosition) return from + (to - from) * (3 * s * s - 2 * s * s * s);
+    if (derivative == kVelocity) return (to - from) * (6 * s - 6 * s * s) / duration;
+    return Vec3::Zero();
+  };
+  return r;
+}
+
 // The room's replanner (a 3 m omnidirectional sensor) for a flight from `from` to `to` [m].
 Replanner WallRoomReplanner(const Map& map, const Vec3& from, const Vec3& to) {
   SensingParams sensing;
@@ -330,14 +344,7 @@ TEST_CASE("a braked vehicle at rest does not repeat a search that found nothing"
     return std::unique_ptr<Planner>(std::make_unique<CountingPlanner>(MakePlanner(rrt, context)));
   });
   const Vec3 from(3, 2, 1.5), to(9, 2, 1.5);
-  Reference ahead;  // from rest, straight through the wall
-  ahead.duration = 4.0;
-  ahead.evaluate = [from, to](double t, int derivative) -> Vec3 {
-    const double s = std::min(t, 4.0) / 4.0;
-    if (derivative == kPosition) return from + (to - from) * (3 * s * s - 2 * s * s * s);
-    if (derivative == kVelocity) return (to - from) * (6 * s - 6 * s * s) / 4.0;
-    return Vec3::Zero();
-  };
+  const Reference ahead = FromRest(from, to, 4.0);  // from rest, straight through the wall
   SensingParams sensing;
   sensing.range = 3.0;
   Replanner replanner(WallRoom(4.0), {true}, CollisionParams{},
@@ -367,14 +374,7 @@ TEST_CASE("a vehicle at rest within the clearance of a box just found backs off 
   // a half wall found 2 cm from the body of a vehicle hovering before it: the trajectory's
   // clearance (0.05 m) no longer holds where it is, so no plan may start there
   const Vec3 from(4.93, 1, 1.5), to(9, 1, 1.5);
-  Reference ahead;  // from rest, straight through the wall
-  ahead.duration = 4.0;
-  ahead.evaluate = [from, to](double t, int derivative) -> Vec3 {
-    const double s = t / 4.0;
-    if (derivative == kPosition) return from + (to - from) * (3 * s * s - 2 * s * s * s);
-    if (derivative == kVelocity) return (to - from) * (6 * s - 6 * s * s) / 4.0;
-    return Vec3::Zero();
-  };
+  const Reference ahead = FromRest(from, to, 4.0);  // from rest, straight through the wall
   Replanner replanner = WallRoomReplanner(WallRoom(2.5), from, to);
   State state;
   state.p_W = from;
@@ -398,14 +398,7 @@ TEST_CASE("depth: the reference ends at rest before what the camera has not seen
   room.name = "empty room";
   room.bounds = {Vec3(0, 0, 0), Vec3(12, 4, 3)};
   const Vec3 from(1, 2, 1.5), to(9, 2, 1.5);
-  Reference ahead;  // from rest, straight to the goal
-  ahead.duration = 6.0;
-  ahead.evaluate = [from, to](double t, int derivative) -> Vec3 {
-    const double s = std::min(t, 6.0) / 6.0;
-    if (derivative == kPosition) return from + (to - from) * (3 * s * s - 2 * s * s * s);
-    if (derivative == kVelocity) return (to - from) * (6 * s - 6 * s * s) / 6.0;
-    return Vec3::Zero();
-  };
+  const Reference ahead = FromRest(from, to, 6.0);  // from rest, straight to the goal
   SensingParams sensing;
   sensing.kind = SensingParams::Kind::kDepth;
   sensing.range = 5.0;
