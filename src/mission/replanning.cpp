@@ -29,21 +29,6 @@ constexpr double kBackoff = 0.1;    // [m] a committed trajectory's end before t
 constexpr double kExtend = 0.5;     // [m] seen beyond it: the trajectory is extended
 constexpr double kWalkStep = 0.05;  // [m] along a path, half a default cell
 
-// The point `arc` [m] along the polyline `path` (its end beyond), and the vertices before it.
-std::vector<Vec3> PathHead(const std::vector<Vec3>& path, double arc) {
-  std::vector<Vec3> head = {path.front()};
-  for (size_t i = 1; i < path.size(); ++i) {
-    const double length = (path[i] - path[i - 1]).norm();
-    if (arc < length) {
-      head.push_back(path[i - 1] + (arc / length) * (path[i] - path[i - 1]));
-      return head;
-    }
-    arc -= length;
-    head.push_back(path[i]);
-  }
-  return head;
-}
-
 double Seconds(Clock::time_point since) {
   return std::chrono::duration<double>(Clock::now() - since).count();
 }
@@ -58,24 +43,6 @@ Reference Splice(const Reference& current, double t_switch, const PiecewiseTraje
     return next.Evaluate3(std::min(t - t_switch, next.duration()), derivative);
   };
   return r;
-}
-
-// [m] along the polyline `path` to its point nearest `p`.
-double ArcNearest(const std::vector<Vec3>& path, const Vec3& p) {
-  double arc = 0.0, here = 0.0, nearest = std::numeric_limits<double>::infinity();
-  for (size_t i = 1; i < path.size(); ++i) {
-    const Vec3 d = path[i] - path[i - 1];
-    const double length = d.norm();
-    const double along =
-        length > 0 ? std::clamp((p - path[i - 1]).dot(d) / (length * length), 0.0, 1.0) : 0.0;
-    const double distance = (path[i - 1] + along * d - p).norm();
-    if (distance < nearest) {
-      nearest = distance;
-      here = arc + along * length;
-    }
-    arc += length;
-  }
-  return here;
 }
 
 TrajectoryWorld ViewOf(const CollisionWorld& world) {

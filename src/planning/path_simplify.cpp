@@ -1,6 +1,7 @@
 #include "planning/path_simplify.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace aerobox {
 namespace {
@@ -21,6 +22,37 @@ double PathLength(const std::vector<Vec3>& path) {
   double length = 0.0;
   for (size_t i = 1; i < path.size(); ++i) length += (path[i] - path[i - 1]).norm();
   return length;
+}
+
+std::vector<Vec3> PathHead(const std::vector<Vec3>& path, double arc) {
+  std::vector<Vec3> head = {path.front()};
+  for (size_t i = 1; i < path.size(); ++i) {
+    const double length = (path[i] - path[i - 1]).norm();
+    if (arc < length) {
+      head.push_back(path[i - 1] + (arc / length) * (path[i] - path[i - 1]));
+      return head;
+    }
+    arc -= length;
+    head.push_back(path[i]);
+  }
+  return head;
+}
+
+double ArcNearest(const std::vector<Vec3>& path, const Vec3& p) {
+  double arc = 0.0, here = 0.0, nearest = std::numeric_limits<double>::infinity();
+  for (size_t i = 1; i < path.size(); ++i) {
+    const Vec3 d = path[i] - path[i - 1];
+    const double length = d.norm();
+    const double along =
+        length > 0 ? std::clamp((p - path[i - 1]).dot(d) / (length * length), 0.0, 1.0) : 0.0;
+    const double distance = (path[i - 1] + along * d - p).norm();
+    if (distance < nearest) {
+      nearest = distance;
+      here = arc + along * length;
+    }
+    arc += length;
+  }
+  return here;
 }
 
 void ShortcutPath(const Validity& validity, int attempts, std::mt19937_64* rng,

@@ -32,3 +32,20 @@ TEST_CASE("pruning and shortcutting shorten a detour and keep it collision-free"
 }
 
 }  // namespace aerobox
+
+namespace aerobox {
+
+TEST_CASE("a polyline's head at an arc length, and the arc length of its point nearest another") {
+  const std::vector<Vec3> path = {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(2, 3, 0)};
+  const std::vector<Vec3> head = PathHead(path, 2.5);
+  REQUIRE(head.size() == 3);
+  CHECK(head[1].isApprox(Vec3(2, 0, 0)));
+  CHECK(head[2].isApprox(Vec3(2, 0.5, 0)));
+  CHECK(PathHead(path, 1.0).back().isApprox(Vec3(1, 0, 0)));
+  CHECK(PathHead(path, 9.0) == path);
+  CHECK(ArcNearest(path, Vec3(1, -1, 0)) == doctest::Approx(1.0));
+  CHECK(ArcNearest(path, Vec3(3, 2, 0)) == doctest::Approx(4.0));
+  CHECK(ArcNearest(path, Vec3(5, 9, 0)) == doctest::Approx(5.0));
+}
+
+}  // namespace aerobox
