@@ -180,7 +180,9 @@ void DrawInset(const Image& inset, Image* frame) {
 }
 
 void RenderOutputs::OnDepthFrame(double, const DepthImage& image, const OccupancyGrid&) {
-  depth_inset_ = ColourDepth(image, setup_.sensing.range);
+  // coloured only when a frame shows it: most depth frames are never drawn
+  depth_frame_ = image;
+  inset_stale_ = true;
 }
 
 void RenderOutputs::OnPlan(const PlanOutcome& plan) {
@@ -262,6 +264,8 @@ void RenderOutputs::OnSample(const TelemetrySample& s) {
   overlay_.vehicle = far ? std::optional<Vec3>(s.state.p_W) : std::nullopt;
   Frame(Hud(s.t, s.state, setup_.map.bounds.min.z(), "flying", overlay_.wind_W), options_.camera,
         overlay_);
+  if (inset_stale_) depth_inset_ = ColourDepth(depth_frame_, setup_.sensing.range);
+  inset_stale_ = false;
   DrawInset(depth_inset_, &image_);
   overlay_.vehicle.reset();
   if (png_due) {

@@ -98,7 +98,9 @@ class RenderOutputs : public MissionObserver {
   int png_frames_ = 0;
   Simulation* sim_ = nullptr;
   std::vector<int> unknown_geoms_;  // the scene's geom of each unknown box (-1: not in it)
-  Image depth_inset_;               // the depth camera's last frame, coloured (empty: none)
+  DepthImage depth_frame_;          // the depth camera's last frame
+  Image depth_inset_;               // ... coloured (empty: none)
+  bool inset_stale_ = false;        // depth_inset_ is not yet depth_frame_'s
   size_t replans_drawn_ = 0;
 };
 

@@ -121,19 +121,27 @@ DepthImage DepthCamera::Capture(const State& body, const std::vector<Aabb>& boxe
       if (nearest_[k] < params_.range) image.hit[k] = kFloor;
     }
   }
-  // then every box within range, in the order of the map (the first of equals wins), over the
-  // pixels its projection covers
+  // then every box within range, nearest first, over the pixels its projection covers: a pixel
+  // whose surface is nearer than the box cannot see it; of equal hits, the first box in the
+  // map's order wins (the floor wins over a box)
+  candidates_.clear();
   for (size_t i = 0; i < boxes.size(); ++i) {
-    if ((o.cwiseMax(boxes[i].min).cwiseMin(boxes[i].max) - o).norm() > params_.range) continue;
-    const std::optional<PixelRect> rect = Footprint(image, boxes[i]);
+    const double distance = (o.cwiseMax(boxes[i].min).cwiseMin(boxes[i].max) - o).norm();
+    if (distance <= params_.range) candidates_.push_back({distance, static_cast<int>(i)});
+  }
+  std::sort(candidates_.begin(), candidates_.end());
+  for (const auto& [distance, i] : candidates_) {
+    const Aabb& box = boxes[static_cast<size_t>(i)];
+    const std::optional<PixelRect> rect = Footprint(image, box);
     if (!rect) continue;
     for (int v = rect->v0; v <= rect->v1; ++v) {
       for (int u = rect->u0; u <= rect->u1; ++u) {
         const size_t k = static_cast<size_t>(v * params_.width + u);
-        const double t = RayToBox(o, rays_[k], boxes[i]);
-        if (t < nearest_[k]) {
+        if (nearest_[k] < distance) continue;
+        const double t = RayToBox(o, rays_[k], box);
+        if (t < nearest_[k] || (t == nearest_[k] && image.hit[k] >= 0 && i < image.hit[k])) {
           nearest_[k] = t;
-          image.hit[k] = static_cast<int>(i);
+          image.hit[k] = i;
         }
       }
     }

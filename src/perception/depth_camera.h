@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "common/schema.h"
@@ -88,6 +89,7 @@ class DepthCamera {
   std::shared_ptr<const std::vector<Vec3>> rays_C_;  // per pixel, in camera axes
   std::vector<Vec3> rays_;                           // this frame's rays in the world, per pixel
   std::vector<double> nearest_;  // [m] along each ray to what it hit (range: nothing)
+  std::vector<std::pair<double, int>> candidates_;  // boxes within range: distance [m], index
 };
 
 }  // namespace aerobox

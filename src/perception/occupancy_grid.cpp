@@ -116,15 +116,20 @@ void OccupancyGrid::Clear(const Vec3& a, const Vec3& b, bool include_end) {
     delta[i] = step[i] != 0 ? resolution_ / std::abs(d[i]) : 2.0;
   }
   const bool ends_inside = t1 >= 1.0;
+  const long stride[3] = {static_cast<long>(ny_) * nz_, nz_, 1};
+  const int size[3] = {nx_, ny_, nz_};
+  long index = Index(cell[0], cell[1], cell[2]);
+  const long last = Index(end[0], end[1], end[2]);
   for (int guard = nx_ + ny_ + nz_ + 3; guard > 0; --guard) {
-    const bool at_end = cell[0] == end[0] && cell[1] == end[1] && cell[2] == end[2];
+    const bool at_end = index == last;
     if (at_end && ends_inside && !include_end) return;
-    Update(Index(cell[0], cell[1], cell[2]), kMiss);
+    if (cells_[static_cast<size_t>(index)].stamp != frame_) Update(index, kMiss);
     if (at_end) return;
     const int axis = next[0] < next[1] ? (next[0] < next[2] ? 0 : 2) : (next[1] < next[2] ? 1 : 2);
     if (next[axis] > t1) return;
     cell[axis] += step[axis];
-    if (cell[axis] < 0 || cell[axis] >= (axis == 0 ? nx_ : axis == 1 ? ny_ : nz_)) return;
+    if (cell[axis] < 0 || cell[axis] >= size[axis]) return;
+    index += step[axis] * stride[axis];
     next[axis] += delta[axis];
   }
 }

@@ -175,3 +175,40 @@ TEST_CASE("depth camera: bad settings are refused naming the key") {
                        std::invalid_argument);
   CHECK_NOTHROW(DepthCameraParams().Validate("sensing"));
 }
+
+TEST_CASE(
+    "depth camera: of two faces at the same depth, the box first in the map is what a ray hit") {
+  // the second box is nearer the camera, but on the faces they share at x = 4 the first wins,
+  // as it would if the boxes were tried in the map's order
+  Map map;
+  map.bounds = {Vec3(0, 0, 0), Vec3(10, 6, 4)};
+  map.boxes.push_back({{Vec3(4, 2.2, 0), Vec3(5, 4, 3)}, Vec3::Constant(0.5), "first", 0});
+  map.boxes.push_back({{Vec3(4, 1.5, 0), Vec3(4.5, 3, 2)}, Vec3::Constant(0.5), "second", 0});
+  DepthCameraParams params;
+  params.width = 64;
+  params.height = 48;
+  params.range = 10.0;
+  DepthCamera camera(params, 1);
+  const DepthImage image = camera.Capture(At(Vec3(1, 2, 1.0), 0.0), Extents(map), map.bounds);
+  int shared = 0, second = 0;
+  for (int v = 0; v < image.height; ++v) {
+    for (int u = 0; u < image.width; ++u) {
+      const int hit = image.hit[static_cast<size_t>(v * image.width + u)];
+      if (hit < 0) continue;
+      const Vec3 p = image.PointW(u, v);
+      REQUIRE(std::abs(p.x() - 4.0) < 1e-4);
+      const bool on_both = p.y() > 2.2 + 1e-3 && p.y() < 3 - 1e-3 && p.z() < 2 - 1e-3;
+      const bool on_second = p.y() < 2.2 - 1e-3 && p.z() < 2 - 1e-3;
+      if (on_both) {
+        ++shared;
+        CHECK(hit == 0);
+      }
+      if (on_second) {
+        ++second;
+        CHECK(hit == 1);
+      }
+    }
+  }
+  CHECK(shared > 20);
+  CHECK(second > 20);
+}
