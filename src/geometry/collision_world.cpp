@@ -1,9 +1,6 @@
 #include "geometry/collision_world.h"
 
-#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
-#include <fcl/geometry/shape/box.h>
-#include <fcl/narrowphase/collision_object.h>
-
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -12,8 +9,6 @@
 
 namespace aerobox {
 namespace {
-
-using Node = fcl::detail::NodeBase<fcl::AABBd>;
 
 // True when the open interior of `box` meets the closed segment a + t (b - a), t in [0, 1]
 // (slab method: the segment's parameter interval inside each pair of faces, intersected).
@@ -43,35 +38,32 @@ double PointBoxDistance(const Vec3& p, const Vec3& min, const Vec3& max) {
 
 }  // namespace
 
+// A bounding volume hierarchy over the boxes, built once, top down: each node splits its boxes at
+// the median of their centres along the longest side of the centres' extent, so the tree is
+// balanced (depth about log2 of the box count) and its nodes lie in one array. A world is
+// rebuilt at every depth frame that adds occupied cells: one allocation, not one per box.
 class CollisionWorld::Tree {
  public:
+  struct Node {
+    Aabb bv;           // encloses every box below
+    int children[2];   // indices into nodes_ (an inner node)
+    size_t index = 0;  // a leaf's box
+    bool leaf = false;
+  };
+
   explicit Tree(const std::vector<Aabb>& boxes) {
-    objects_.reserve(boxes.size());
-    std::vector<fcl::CollisionObjectd*> raw;
-    for (size_t i = 0; i < boxes.size(); ++i) {
-      const Vec3 size = boxes[i].Size();
-      auto shape = std::make_shared<fcl::Boxd>(size.x(), size.y(), size.z());
-      fcl::Transform3d pose = fcl::Transform3d::Identity();
-      pose.translation() = boxes[i].Center();
-      objects_.push_back(std::make_unique<fcl::CollisionObjectd>(shape, pose));
-      // the index of the box travels with the object, so a leaf leads back to our Aabb
-      objects_.back()->setUserData(reinterpret_cast<void*>(i));
-      raw.push_back(objects_.back().get());
-    }
-    manager_.registerObjects(raw);
-    manager_.setup();
-    // the traversals below keep at most height + 1 nodes on a fixed stack; FCL builds a
-    // balanced tree (about log2 of the box count), so this holds for any real map
-    if (manager_.getTree().getMaxHeight() + 2 > kMaxStack) {
-      throw std::length_error("CollisionWorld: FCL tree too deep for the traversal stack");
-    }
+    if (boxes.empty()) return;
+    std::vector<size_t> order(boxes.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    nodes_.reserve(2 * boxes.size() - 1);
+    Build(boxes, &order, 0, order.size());
   }
 
-  static constexpr size_t kMaxStack = 128;
+  static constexpr size_t kMaxStack = 128;  // a balanced tree of fewer than 2^120 boxes
 
-  const Node* root() const { return manager_.getTree().getRoot(); }
-  static size_t Index(const Node* leaf) {
-    return reinterpret_cast<size_t>(static_cast<fcl::CollisionObjectd*>(leaf->data)->getUserData());
+  const Node* root() const { return nodes_.empty() ? nullptr : &nodes_[0]; }
+  const Node* child(const Node* node, int k) const {
+    return &nodes_[static_cast<size_t>(node->children[k])];
   }
 
   // Calls visit(index) for every box whose bounding box meets `query` (closed), until visit
@@ -83,23 +75,59 @@ class CollisionWorld::Tree {
     if (root() != nullptr) stack[top++] = root();
     while (top > 0) {
       const Node* node = stack[--top];
-      if ((node->bv.min_.array() > query.max.array()).any() ||
-          (query.min.array() > node->bv.max_.array()).any()) {
+      if ((node->bv.min.array() > query.max.array()).any() ||
+          (query.min.array() > node->bv.max.array()).any()) {
         continue;
       }
-      if (node->isLeaf()) {
-        if (visit(Index(node))) return true;
+      if (node->leaf) {
+        if (visit(node->index)) return true;
       } else {
-        stack[top++] = node->children[0];
-        stack[top++] = node->children[1];
+        stack[top++] = child(node, 0);
+        stack[top++] = child(node, 1);
       }
     }
     return false;
   }
 
  private:
-  std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects_;
-  fcl::DynamicAABBTreeCollisionManagerd manager_;
+  // The node over order[begin, end); returns its index.
+  int Build(const std::vector<Aabb>& boxes, std::vector<size_t>* order, size_t begin, size_t end) {
+    const int at = static_cast<int>(nodes_.size());
+    nodes_.emplace_back();
+    Aabb bv = boxes[(*order)[begin]];
+    Vec3 lo = bv.Center(), hi = lo;
+    for (size_t i = begin; i < end; ++i) {
+      const Aabb& b = boxes[(*order)[i]];
+      bv.min = bv.min.cwiseMin(b.min);
+      bv.max = bv.max.cwiseMax(b.max);
+      lo = lo.cwiseMin(b.Center());
+      hi = hi.cwiseMax(b.Center());
+    }
+    nodes_[static_cast<size_t>(at)].bv = bv;
+    if (end - begin == 1) {
+      nodes_[static_cast<size_t>(at)].leaf = true;
+      nodes_[static_cast<size_t>(at)].index = (*order)[begin];
+      return at;
+    }
+    int axis;
+    (hi - lo).maxCoeff(&axis);
+    const size_t middle = begin + (end - begin) / 2;
+    // by centre, then by index: the same boxes give the same tree
+    std::nth_element(order->begin() + static_cast<long>(begin),
+                     order->begin() + static_cast<long>(middle),
+                     order->begin() + static_cast<long>(end), [&](size_t a, size_t b) {
+                       const double ca = boxes[a].min[axis] + boxes[a].max[axis];
+                       const double cb = boxes[b].min[axis] + boxes[b].max[axis];
+                       return ca < cb || (ca == cb && a < b);
+                     });
+    const int left = Build(boxes, order, begin, middle);
+    const int right = Build(boxes, order, middle, end);
+    nodes_[static_cast<size_t>(at)].children[0] = left;
+    nodes_[static_cast<size_t>(at)].children[1] = right;
+    return at;
+  }
+
+  std::vector<Node> nodes_;
 };
 
 void CollisionParams::Validate() const {
@@ -154,24 +182,25 @@ double CollisionWorld::Clearance(const Vec3& p) const {
   const Vec3 half = 0.5 * params_.vehicle_size;
   const double clearance = params_.clearance;
   double best = std::numeric_limits<double>::infinity();
+  using Node = Tree::Node;
   const Node* stack[Tree::kMaxStack];
   int top = 0;
   if (tree_->root() != nullptr) stack[top++] = tree_->root();
   while (top > 0) {
     const Node* node = stack[--top];
     const double bound =
-        PointBoxDistance(p, node->bv.min_.array() + clearance, node->bv.max_.array() - clearance);
+        PointBoxDistance(p, node->bv.min.array() + clearance, node->bv.max.array() - clearance);
     if (bound >= best) continue;
-    if (node->isLeaf()) {
-      const Aabb& box = boxes_[Tree::Index(node)];
+    if (node->leaf) {
+      const Aabb& box = boxes_[node->index];
       best = std::min(best, PointBoxDistance(p, box.min - half, box.max + half));
       continue;
     }
     // nearer child last, so it is popped first and tightens `best` early
-    const Node* first = node->children[0];
-    const Node* second = node->children[1];
-    const double d0 = PointBoxDistance(p, first->bv.min_, first->bv.max_);
-    const double d1 = PointBoxDistance(p, second->bv.min_, second->bv.max_);
+    const Node* first = tree_->child(node, 0);
+    const Node* second = tree_->child(node, 1);
+    const double d0 = PointBoxDistance(p, first->bv.min, first->bv.max);
+    const double d1 = PointBoxDistance(p, second->bv.min, second->bv.max);
     if (d0 < d1) std::swap(first, second);
     stack[top++] = first;
     stack[top++] = second;

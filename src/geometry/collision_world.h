@@ -73,7 +73,7 @@ class CollisionWorld {
   Projection ProjectIntoFreeBounds(const Vec3& p) const;
 
  private:
-  class Tree;  // FCL's dynamic AABB tree over the grown boxes, hidden from the header
+  class Tree;  // a bounding volume hierarchy over the grown boxes, hidden from the header
 
   CollisionParams params_;
   Aabb free_bounds_;

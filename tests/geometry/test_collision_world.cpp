@@ -113,6 +113,56 @@ TEST_CASE("clearance and overlap agree with brute force on a map with many boxes
   }
 }
 
+TEST_CASE("segments and boxes agree with a test of every box, and a moved world answers the same") {
+  // the broad phase (the hierarchy) must not lose a box: the same answers as trying them all
+  const Map map = RandomMap(9, 500);
+  const CollisionParams params;
+  CollisionWorld built(map, params);
+  const CollisionWorld world(std::move(built));
+  const Vec3 margin = params.Margin();
+  // the open interior of a grown box meets the segment (slabs, as the world's own second method)
+  const auto enters = [&](const Vec3& a, const Vec3& b, const Aabb& box) {
+    double enter = -1e300, exit = 1e300;
+    for (int k = 0; k < 3; ++k) {
+      const double d = b[k] - a[k];
+      if (d == 0.0) {
+        if (!(box.min[k] - margin[k] < a[k] && a[k] < box.max[k] + margin[k])) return false;
+        continue;
+      }
+      const double t0 = (box.min[k] - margin[k] - a[k]) / d;
+      const double t1 = (box.max[k] + margin[k] - a[k]) / d;
+      enter = std::max(enter, std::min(t0, t1));
+      exit = std::min(exit, std::max(t0, t1));
+    }
+    return enter < exit && enter < 1.0 && exit > 0.0;
+  };
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> where(0.2, 9.8), step(-1.5, 1.5), side(0.0, 0.8);
+  int free_segments = 0, free_boxes = 0, tested = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Vec3 a(where(rng), where(rng), where(rng));
+    const Vec3 b = (a + Vec3(step(rng), step(rng), step(rng))).cwiseMax(0.2).cwiseMin(9.8);
+    if (!world.IsPointFree(a)) continue;
+    ++tested;
+    bool expected = world.free_bounds().Contains(b);
+    for (const Box& box : map.boxes) expected = expected && !enters(a, b, box.extent);
+    CHECK(world.IsSegmentFree(a, b) == expected);
+    free_segments += expected ? 1 : 0;
+    const Aabb query{a, a + Vec3(side(rng), side(rng), side(rng))};
+    bool box_free = query.IsInside(world.free_bounds());
+    for (const Box& box : map.boxes) {
+      box_free =
+          box_free && !Aabb{box.extent.min - margin, box.extent.max + margin}.Overlaps(query);
+    }
+    CHECK(world.IsBoxFree(query) == box_free);
+    free_boxes += box_free ? 1 : 0;
+  }
+  CHECK(tested > 300);
+  CHECK(free_segments > 50);
+  CHECK(free_segments < tested);
+  CHECK(free_boxes > 20);
+}
+
 TEST_CASE("a map without boxes and invalid parameters") {
   Map empty;
   empty.bounds = {Vec3(0, 0, 0), Vec3(1, 1, 1)};
