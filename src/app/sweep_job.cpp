@@ -24,6 +24,7 @@
 #include "common/progress.h"
 #include "common/quoting.h"
 #include "common/subprocess.h"
+#include "common/wall_clock.h"
 #include "outputs/files.h"
 #include "outputs/interrupt.h"
 
@@ -33,10 +34,6 @@ using Json = nlohmann::json;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double Seconds(Clock::time_point since) {
-  return std::chrono::duration<double>(Clock::now() - since).count();
-}
 
 std::string Host() {
   char name[256] = {};

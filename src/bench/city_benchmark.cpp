@@ -6,6 +6,7 @@
 #include <random>
 #include <vector>
 
+#include "common/wall_clock.h"
 #include "mission/plan.h"
 #include "planning/lattice_planner.h"
 #include "planning/path_simplify.h"
@@ -19,10 +20,6 @@ namespace {
 constexpr double kRouteMargin = 25.0;  // [m] as `aerobox fly` keeps in a city's scene
 constexpr int kSteps = 1000;           // per timing of MuJoCo's step
 constexpr int kRepetitions = 5;
-
-double Seconds(std::chrono::steady_clock::time_point since) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
-}
 
 // Median over `repetitions` of mj_step's rate [steps/s] with the vehicle hovering at `at`.
 double StepsPerSecond(const std::string& xml, const Vec3& at, int repetitions) {

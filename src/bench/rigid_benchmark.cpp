@@ -10,6 +10,7 @@
 
 #include "common/number_format.h"
 #include "common/stop.h"
+#include "common/wall_clock.h"
 #include "common/worker_pool.h"
 #include "control/inner_loops.h"
 #include "envs/env_batch.h"
@@ -21,10 +22,6 @@ namespace aerobox {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double Seconds(Clock::time_point begin) {
-  return std::chrono::duration<double>(Clock::now() - begin).count();
-}
 
 double Median(std::vector<double> v) {
   std::sort(v.begin(), v.end());

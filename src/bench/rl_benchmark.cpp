@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/stop.h"
+#include "common/wall_clock.h"
 #include "common/worker_pool.h"
 #include "envs/env_batch.h"
 
@@ -18,10 +19,6 @@ namespace aerobox {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double Seconds(Clock::time_point begin) {
-  return std::chrono::duration<double>(Clock::now() - begin).count();
-}
 
 // The MuJoCo state of one world at the start of one environment step: what the bare physics
 // starts that step from.

@@ -10,6 +10,7 @@
 
 #include "common/number_format.h"
 #include "common/seed.h"
+#include "common/wall_clock.h"
 #include "planning/path_simplify.h"
 #include "planning/rrt_star.h"
 
@@ -28,10 +29,6 @@ constexpr double kNear = 0.3;       // [m] nearer than this the camera cannot se
 constexpr double kBackoff = 0.1;    // [m] a committed trajectory's end before the unseen
 constexpr double kExtend = 0.5;     // [m] seen beyond it: the trajectory is extended
 constexpr double kWalkStep = 0.05;  // [m] along a path, half a default cell
-
-double Seconds(Clock::time_point since) {
-  return std::chrono::duration<double>(Clock::now() - since).count();
-}
 
 // The reference `current` until `t_switch`, then `next` (which starts in current's state there).
 Reference Splice(const Reference& current, double t_switch, const PiecewiseTrajectory& next) {
