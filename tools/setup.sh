@@ -13,8 +13,8 @@ packages=(
   # src/sim (and every scene test): MuJoCo 2.2.2; its CMake config needs qhull's headers and
   # OpenGL (find_dependency), and mujoco-compile checks our scenes outside our code
   libmujoco-dev libqhull-dev libgl-dev libmujoco-samples
-  # src/geometry: FCL's dynamic AABB tree (broad phase); src/planning: nanoflann's k-d tree
-  libfcl-dev libnanoflann-dev
+  # src/planning: nanoflann's k-d tree
+  libnanoflann-dev
   # src/trajectory: Ipopt (with MUMPS) for the corridor-constrained minimum-snap QP; its
   # pkg-config links -llapack -lblas, whose .so links come only with these -dev packages
   coinor-libipopt-dev liblapack-dev libblas-dev
@@ -22,6 +22,8 @@ packages=(
   libosmesa6-dev libavcodec-dev libavformat-dev libavutil-dev libswscale-dev libpng-dev
   # src/app: command line, scenario files, aerobox bench
   libcli11-dev libtomlplusplus-dev libbenchmark-dev
+  # aerobox bench's navigation section: OctoMap, the occupancy map's reference
+  liboctomap-dev
   # src/telemetry: summary.json
   nlohmann-json3-dev
   # src/python: the aerobox package (pybind11, Debian's python3 with numpy)

@@ -62,6 +62,17 @@ Aabb OccupancyGrid::CellBox(long index) const {
   return {min, (min.array() + resolution_).matrix()};
 }
 
+long OccupancyGrid::memory() const {
+  long bytes = static_cast<long>(cells_.capacity() * sizeof(Cell) +
+                                 walked_.capacity() * sizeof(std::uint32_t) +
+                                 column_runs_.capacity() * sizeof(Runs) + column_dirty_.capacity());
+  for (const long c : columns_with_runs_) {
+    bytes += static_cast<long>(column_runs_[static_cast<size_t>(c)].capacity() *
+                               sizeof(std::pair<int, int>));
+  }
+  return bytes;
+}
+
 Occupancy OccupancyGrid::At(const Vec3& p) const {
   int ix, iy, iz;
   if (!CellOf(p, &ix, &iy, &iz)) return Occupancy::kUnknown;

@@ -51,6 +51,7 @@ class OccupancyGrid {
   long free_count() const { return free_; }
   long cell_count() const { return static_cast<long>(cells_.size()); }
   double resolution() const { return resolution_; }
+  long memory() const;  // [bytes] the cells, their walk stamps and the kept column runs
   Aabb CellBox(long index) const;
 
   static constexpr long kMaxCells = 200'000'000;

@@ -46,6 +46,8 @@ grep -q "aerobox / PyFlyt (simulated s) | aerobox rigid: simulated s per wall s 
   { cat "$work/tables.md"; echo "FAIL: the PyFlyt table is missing"; exit 1; }
 grep -q "aerobox / RotorPy | aerobox rigid: env steps/s | rigid / RotorPy |$" "$work/tables.md" ||
   { cat "$work/tables.md"; echo "FAIL: the learning environments' peers table is missing"; exit 1; }
+grep -q "^| OctoMap | [0-9.]* ms | 1.00x |" "$work/tables.md" ||
+  { cat "$work/tables.md"; echo "FAIL: the occupancy map's comparison with OctoMap is missing"; exit 1; }
 grep -q "^| navigate |" "$work/tables.md" ||
   { cat "$work/tables.md"; echo "FAIL: the learning environments' table lacks navigate"; exit 1; }
 # a misspelt section is refused before any work, naming the one it looks like
