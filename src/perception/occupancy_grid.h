@@ -1,9 +1,10 @@
 // An occupancy map built in flight: a dense voxel grid over the map's bounds, each cell unknown
 // until a depth ray passes through it (free) or ends in it (occupied), with OctoMap's log-odds
 // update and clamping. A dense grid, not OctoMap's octree: our maps are bounded, so a grid gives
-// O(1) cell access and a ray walk without tree descent, and nothing to link. Fusion walks one
-// ray per end cell: at 160 x 120 px, 25 Hz and 5 m it is about 40 % of a forest flight's wall
-// time (the navigation benchmark), the largest share.
+// O(1) cell access and a ray walk without tree descent (the navigation benchmark fuses the same
+// frames 5x faster than OctoMap 1.9, for 4 times its memory). Fusion walks one ray per end
+// cell: at 160 x 120 px, 25 Hz and 5 m it is about 46 % of a forest flight's wall time, the
+// largest share.
 #pragma once
 
 #include <cstdint>

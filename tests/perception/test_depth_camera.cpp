@@ -29,6 +29,15 @@ std::vector<Aabb> Extents(const Map& map) {
   return boxes;
 }
 
+// 64 x 48 px, 10 m: small images of the two-box scenes
+DepthCameraParams SmallCamera() {
+  DepthCameraParams params;
+  params.width = 64;
+  params.height = 48;
+  params.range = 10.0;
+  return params;
+}
+
 State At(const Vec3& p, double yaw, double pitch = 0.0) {
   State s;
   s.p_W = p;
@@ -92,11 +101,7 @@ TEST_CASE("depth camera: every pixel's depth is what MuJoCo's mj_ray sees, withi
 
 TEST_CASE("depth camera: a box behind another is not seen, the point cloud lies on the surfaces") {
   const Map map = TwoBoxes();
-  DepthCameraParams params;
-  params.width = 64;
-  params.height = 48;
-  params.range = 10.0;
-  DepthCamera camera(params, 1);
+  DepthCamera camera(SmallCamera(), 1);
   // on the near box's axis, low: the far box shows only above and beside the near one
   const DepthImage low = camera.Capture(At(Vec3(1, 2, 1.0), 0.0), Extents(map), map.bounds);
   int near = 0, far = 0;
@@ -184,11 +189,7 @@ TEST_CASE(
   map.bounds = {Vec3(0, 0, 0), Vec3(10, 6, 4)};
   map.boxes.push_back({{Vec3(4, 2.2, 0), Vec3(5, 4, 3)}, Vec3::Constant(0.5), "first", 0});
   map.boxes.push_back({{Vec3(4, 1.5, 0), Vec3(4.5, 3, 2)}, Vec3::Constant(0.5), "second", 0});
-  DepthCameraParams params;
-  params.width = 64;
-  params.height = 48;
-  params.range = 10.0;
-  DepthCamera camera(params, 1);
+  DepthCamera camera(SmallCamera(), 1);
   const DepthImage image = camera.Capture(At(Vec3(1, 2, 1.0), 0.0), Extents(map), map.bounds);
   int shared = 0, second = 0;
   for (int v = 0; v < image.height; ++v) {
