@@ -196,9 +196,15 @@ std::string DescribeVehicle(const std::string& kind, const QuadParams& v) {
   return out.str();
 }
 
-std::string DescribeControl(const ControllerConfig& c) {
+std::string DescribeControl(const ControllerConfig& c, const SensorParams& sensors) {
   std::ostringstream out;
   out << c.kind << " at " << FormatNumber(c.rate) << " Hz: ";
+  if (c.observer.enabled) {
+    out << "disturbance observer (" << FormatNumber(c.observer.time_constant) << " s); ";
+  }
+  if (MeasuresAcceleration(c)) {
+    out << "measures " << (sensors.Enabled() ? "the IMU" : "the ground truth (no IMU)") << "; ";
+  }
   if (c.kind == "cascade") {
     out << "position " << FormatVector(c.cascade.position_gain) << " 1/s, velocity "
         << FormatVector(c.cascade.velocity_gain) << " 1/s (I "
@@ -283,7 +289,7 @@ int RunCheck(const FlightSetup& setup, std::ostream& out) {
   // the settings in force, after the scenario's tables
   const FlightParams& f = setup.flight;
   Row(out, "vehicle") << DescribeVehicle(setup.vehicle_kind, setup.vehicle) << "\n";
-  Row(out, "control") << DescribeControl(setup.controller) << "\n";
+  Row(out, "control") << DescribeControl(setup.controller, setup.sensors) << "\n";
   Row(out, "flight") << "goal within " << FormatNumber(f.goal_tolerance) << " m below "
                      << FormatNumber(f.goal_speed) << " m/s, " << FormatNumber(f.settle_time)
                      << " s after the trajectory; fly-away at " << FormatNumber(f.flyaway_distance)
@@ -527,7 +533,7 @@ class Cli {
                     "septic-full; or given (the scenario's [trajectory] file)");
     fly->add_option(
         "--controller", python_modules.controller,
-        "the controller: a built-in (cascade, se3) or a Python class, file.py:Class "
+        "the controller: a built-in (cascade, se3, indi) or a Python class, file.py:Class "
         "(Class(quad_params).update(t, state, flat_output) -> dict, RotorPy's contract)");
     fly->add_option("--command", python_modules.command,
                     "which keys of a Python controller's dict fly: auto (the lowest level given), "

@@ -59,10 +59,15 @@ struct ControlStatus {
 
 // What a controller may know besides the state, given before each Update: the wind at the
 // vehicle [m/s] (world ENU) over the last physics step and the rotors' thrusts [N] now (RotorPy's
-// state['wind'] and state['rotor_speeds']). The built-in controllers do not read it.
+// state['wind'] and state['rotor_speeds']), and the vehicle's measured acceleration [m/s^2]
+// (world ENU, gravity not included): with sensors on the IMU's (its specific force less the
+// estimated bias, turned by the estimated attitude), else the physics' own, and `imu` says
+// which. INDI and the disturbance observer read the acceleration and the thrusts.
 struct Surroundings {
   Vec3 wind_W = Vec3::Zero();
   Vec4 rotor_thrusts = Vec4::Zero();
+  Vec3 acceleration_W = Vec3::Zero();
+  bool imu = false;
 };
 
 class Controller {

@@ -6,6 +6,7 @@
 #include "common/drag.h"
 #include "common/number_format.h"
 #include "control/cascade.h"
+#include "control/indi_control.h"
 
 namespace aerobox {
 
@@ -45,6 +46,7 @@ void ControllerConfig::Describe(Archive& a) {
   a.Vector({"se3_attitude_gain", "1/s^2", "se3: on the attitude error"}, &se3.attitude_gain, 0,
            1e5);
   a.Vector({"se3_rate_gain", "1/s", "se3: on the body-rate error"}, &se3.rate_gain, 0, 1e5);
+  observer.Describe(a);
   // the attitude and rate loops below any command that needs them
   a.Vector({"attitude_gain", "1/s", "rate per radian of error: roll, pitch, yaw"},
            &inner.attitude.gain, 0, 1e5);
@@ -65,6 +67,16 @@ void ControllerConfig::Validate() const {
   cascade.Validate();
   se3.Validate();
   inner.Validate();
+  if (kind == "indi") params.GetOr<IndiParams>().Validate(rate);
+  if (kind == "indi" && observer.enabled) {
+    throw std::invalid_argument(
+        "controller.observer: indi measures the external force itself (the observer would count "
+        "it twice); the observer is for the other kinds");
+  }
+}
+
+bool MeasuresAcceleration(const ControllerConfig& config) {
+  return config.kind == "indi" || config.observer.enabled;
 }
 
 Registry<ControllerFactory>& Controllers() {
@@ -76,6 +88,14 @@ Registry<ControllerFactory>& Controllers() {
     r.Register("se3", [](const ControllerConfig& config, const QuadParams& vehicle) {
       return std::make_unique<Se3Controller>(config.se3, vehicle);
     });
+    r.Register(
+        "indi",
+        [](const ControllerConfig& config, const QuadParams& vehicle) {
+          IndiParams indi = config.params.GetOr<IndiParams>();
+          indi.gains.max_tilt = config.cascade.max_tilt;
+          return std::make_unique<IndiController>(indi, vehicle, config.rate);
+        },
+        PluginParameters::Of(IndiParams()));
     return r;
   }();
   return registry;
@@ -87,6 +107,7 @@ class DragFeedForward : public Controller {
  public:
   DragFeedForward(std::unique_ptr<Controller> inner, const DragModel& drag)
       : inner_(std::move(inner)), drag_(drag) {}
+  void Sense(const Surroundings& now) override { inner_->Sense(now); }
   ControlStatus Update(double t, const State& state, const FlatOutput& setpoint,
                        ControlCommand* command) override {
     return inner_->Update(t, state, CompensateDrag(setpoint, drag_), command);
@@ -116,7 +137,12 @@ std::unique_ptr<Controller> MakeController(const ControllerConfig& config,
   ControllerConfig filled = config;
   if (filled.params.empty()) filled.params = Controllers().Parameters(config.kind);
   std::unique_ptr<Controller> controller = (*factory)(filled, vehicle);
-  if (!config.drag_feedforward) return controller;
+  if (config.observer.enabled) {
+    return WithDisturbanceObserver(std::move(controller), config.observer, vehicle.mass,
+                                   1.0 / config.rate);
+  }
+  // indi measures drag with the rest, as the observer does: fed forward too, it would count twice
+  if (!config.drag_feedforward || config.kind == "indi") return controller;
   return WithDragFeedForward(std::move(controller), LumpedDrag(vehicle));
 }
 

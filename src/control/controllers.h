@@ -1,5 +1,5 @@
 // The controllers by name: the configuration a scenario's [controller] table sets, and the
-// registry that makes a Controller of it ("cascade", "se3", and any a user registers).
+// registry that makes a Controller of it ("cascade", "se3", "indi", and any a user registers).
 #pragma once
 
 #include <functional>
@@ -8,6 +8,7 @@
 
 #include "common/registry.h"
 #include "control/controller.h"
+#include "control/disturbance_observer.h"
 #include "control/inner_loops.h"
 #include "control/position_control.h"
 #include "control/se3_control.h"
@@ -27,6 +28,9 @@ struct ControllerConfig {
   // acceleration and jerk the thrust must produce, drag included. Scenarios turn it on with
   // [aero] unless [controller] drag_feedforward says otherwise.
   bool drag_feedforward = false;
+  // Estimate the external force in flight and feed it forward (any kind; in place of the drag
+  // feed-forward, whose force it measures too).
+  DisturbanceObserverParams observer;
   // A registered controller's own parameters ([controller] keys beyond the built-ins'), with
   // the defaults it registered (Registry::Register); empty for the built-ins.
   PluginParameters params;
@@ -37,6 +41,10 @@ struct ControllerConfig {
   // Throws std::invalid_argument naming the field.
   void Validate() const;
 };
+
+// Whether the controller `config` makes measures the vehicle's acceleration and rotor thrusts
+// (indi, or any kind with the observer): from the IMU with sensors on, else the ground truth.
+bool MeasuresAcceleration(const ControllerConfig& config);
 
 using ControllerFactory =
     std::function<std::unique_ptr<Controller>(const ControllerConfig&, const QuadParams&)>;
@@ -49,7 +57,8 @@ Registry<ControllerFactory>& Controllers();
 std::unique_ptr<Controller> WithDragFeedForward(std::unique_ptr<Controller> inner,
                                                 const DragModel& drag);
 
-// The controller `config.kind` names (with drag fed forward when config asks; with its
+// The controller `config.kind` names (with the disturbance observer, or else drag fed forward,
+// when config asks; with its
 // registered default parameters when config has none); throws std::invalid_argument for an
 // unknown kind.
 std::unique_ptr<Controller> MakeController(const ControllerConfig& config,

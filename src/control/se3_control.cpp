@@ -34,6 +34,51 @@ Se3Controller::Se3Controller(const Se3Params& params, const QuadParams& vehicle)
   params_.Validate();
 }
 
+Vec3 LimitTilt(Vec3 a, double max_tilt) {
+  a.z() = std::max(a.z(), 0.1 * kGravity);
+  const double max_horizontal = a.z() * std::tan(max_tilt);
+  if (a.head<2>().norm() > max_horizontal) a.head<2>() *= max_horizontal / a.head<2>().norm();
+  return a;
+}
+
+AttitudeTarget FlatAttitude(const Vec3& a, const FlatOutput& setpoint) {
+  // desired attitude: body z along the force, body x towards the yaw heading
+  const double c = a.norm();  // collective acceleration [m/s^2]
+  const Vec3 b3 = a / c;
+  const Vec3 heading(std::cos(setpoint.yaw), std::sin(setpoint.yaw), 0.0);
+  Vec3 b2 = b3.cross(heading);
+  if (b2.norm() < 1e-6) b2 = b3.cross(Vec3::UnitX());
+  b2.normalize();
+  const Vec3 b1 = b2.cross(b3);
+  AttitudeTarget target;
+  target.r_d << b1, b2, b3;
+
+  // desired body rates and accelerations from jerk and snap: the force direction turns with
+  // the jerk's part across it, d(c b3)/dt = j, d^2(c b3)/dt^2 = s
+  const Vec3 h = (setpoint.j_W - b3.dot(setpoint.j_W) * b3) / c;  // = w x b3
+  target.w_d = Vec3(-h.dot(b2), h.dot(b1), setpoint.yaw_rate * b3.z());
+  const Vec3 w_W = target.r_d * target.w_d;
+  const double c_dot = b3.dot(setpoint.j_W);
+  const double c_ddot = b3.dot(setpoint.s_W) + c * w_W.cross(b3).squaredNorm();
+  const Vec3 h2 =
+      (setpoint.s_W - c_ddot * b3 - 2.0 * c_dot * w_W.cross(b3) - c * w_W.cross(w_W.cross(b3))) /
+      c;  // = w_dot x b3
+  target.w_dot_d = Vec3(-h2.dot(b2), h2.dot(b1), 0.0);
+  return target;
+}
+
+Vec3 AttitudeAcceleration(const Se3Params& gains, const Mat3& r, const Vec3& w_B,
+                          const AttitudeTarget& target, Vec3* e_R) {
+  // errors on SO(3) and in the body rates (Lee et al., eqs. 10-11), and the angular
+  // acceleration of the moment law (eq. 16)
+  const Vec3 error = 0.5 * Vee(target.r_d.transpose() * r - r.transpose() * target.r_d);
+  const Mat3 r_rel = r.transpose() * target.r_d;
+  const Vec3 e_W = w_B - r_rel * target.w_d;
+  if (e_R) *e_R = error;
+  return -gains.attitude_gain.cwiseProduct(error) - gains.rate_gain.cwiseProduct(e_W) -
+         Hat(w_B) * r_rel * target.w_d + r_rel * target.w_dot_d;
+}
+
 ControlStatus Se3Controller::Update(double, const State& state, const FlatOutput& setpoint,
                                     ControlCommand* command) {
   if (!setpoint.AllFinite() || !state.p_W.allFinite() || !state.v_W.allFinite() ||
@@ -46,48 +91,17 @@ ControlStatus Se3Controller::Update(double, const State& state, const FlatOutput
 
   // the force (per unit mass): feedback, feed-forward, gravity; its tilt limited as the
   // cascade's, shrinking the horizontal part
-  Vec3 a = -params_.position_gain.cwiseProduct(e_x) - params_.velocity_gain.cwiseProduct(e_v) +
-           setpoint.a_W + Vec3(0, 0, kGravity);
-  a.z() = std::max(a.z(), 0.1 * kGravity);
-  const double max_horizontal = a.z() * std::tan(params_.max_tilt);
-  if (a.head<2>().norm() > max_horizontal) a.head<2>() *= max_horizontal / a.head<2>().norm();
-  const double c = a.norm();  // collective acceleration [m/s^2]
+  const Vec3 a =
+      LimitTilt(-params_.position_gain.cwiseProduct(e_x) - params_.velocity_gain.cwiseProduct(e_v) +
+                    setpoint.a_W + Vec3(0, 0, kGravity),
+                params_.max_tilt);
   command->thrust = std::max(0.0, mass_ * a.dot(r.col(2)));
-
-  // desired attitude: body z along the force, body x towards the yaw heading
-  const Vec3 b3 = a / c;
-  const Vec3 heading(std::cos(setpoint.yaw), std::sin(setpoint.yaw), 0.0);
-  Vec3 b2 = b3.cross(heading);
-  if (b2.norm() < 1e-6) b2 = b3.cross(Vec3::UnitX());
-  b2.normalize();
-  const Vec3 b1 = b2.cross(b3);
-  Mat3 r_d;
-  r_d << b1, b2, b3;
-
-  // desired body rates and accelerations from jerk and snap: the force direction turns with
-  // the jerk's part across it, d(c b3)/dt = j, d^2(c b3)/dt^2 = s
-  const Vec3 h = (setpoint.j_W - b3.dot(setpoint.j_W) * b3) / c;  // = w x b3
-  Vec3 w_d(-h.dot(b2), h.dot(b1), setpoint.yaw_rate * b3.z());
-  const Vec3 w_W = r_d * w_d;
-  const double c_dot = b3.dot(setpoint.j_W);
-  const double c_ddot = b3.dot(setpoint.s_W) + c * w_W.cross(b3).squaredNorm();
-  const Vec3 h2 =
-      (setpoint.s_W - c_ddot * b3 - 2.0 * c_dot * w_W.cross(b3) - c * w_W.cross(w_W.cross(b3))) /
-      c;  // = w_dot x b3
-  const Vec3 w_dot_d(-h2.dot(b2), h2.dot(b1), 0.0);
-
-  // errors on SO(3) and in the body rates (Lee et al., eqs. 10-11), and the moment (eq. 16)
-  const Vec3 e_R = 0.5 * Vee(r_d.transpose() * r - r.transpose() * r_d);
-  const Mat3 r_rel = r.transpose() * r_d;
-  const Vec3 e_W = state.w_B - r_rel * w_d;
+  const AttitudeTarget target = FlatAttitude(a, setpoint);
+  const Vec3 alpha = AttitudeAcceleration(params_, r, state.w_B, target, &last_e_R_);
   const Vec3 jw = inertia_.cwiseProduct(state.w_B);
-  const Vec3 alpha = -params_.attitude_gain.cwiseProduct(e_R) -
-                     params_.rate_gain.cwiseProduct(e_W) - Hat(state.w_B) * r_rel * w_d +
-                     r_rel * w_dot_d;
   command->level = CommandLevel::kThrustMoment;
   command->moment_B = inertia_.cwiseProduct(alpha) + state.w_B.cross(jw);
-  last_e_R_ = e_R;
-  last_w_d_ = w_d;
+  last_w_d_ = target.w_d;
   return command->moment_B.allFinite() && std::isfinite(command->thrust)
              ? ControlStatus::Ok()
              : ControlStatus::NonFinite();

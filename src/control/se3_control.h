@@ -25,6 +25,23 @@ struct Se3Params {
   void Validate() const;
 };
 
+// The pieces of the law that other controllers share (control/indi_control.h):
+// - LimitTilt: `a` [m/s^2] with its vertical part at least 0.1 g and its horizontal part shrunk
+//   so that it leans at most `max_tilt` [rad] from the world's z;
+// - FlatAttitude: for a force per unit mass `a` (world, gravity included) and the setpoint's yaw,
+//   jerk and snap, the desired attitude, its body rates and their derivative;
+// - AttitudeAcceleration: Lee et al.'s angular acceleration [rad/s^2] toward `target` from the
+//   attitude `r` and the body rates `w_B`, and the attitude error e_R.
+struct AttitudeTarget {
+  Mat3 r_d = Mat3::Identity();
+  Vec3 w_d = Vec3::Zero();      // [rad/s]
+  Vec3 w_dot_d = Vec3::Zero();  // [rad/s^2]
+};
+Vec3 LimitTilt(Vec3 a, double max_tilt);
+AttitudeTarget FlatAttitude(const Vec3& a, const FlatOutput& setpoint);
+Vec3 AttitudeAcceleration(const Se3Params& gains, const Mat3& r, const Vec3& w_B,
+                          const AttitudeTarget& target, Vec3* e_R = nullptr);
+
 class Se3Controller : public Controller {
  public:
   Se3Controller(const Se3Params& params, const QuadParams& vehicle);

@@ -111,6 +111,11 @@ State SensorSuite::Estimate() const {
   return State{s.p_W, s.v_W, s.q_WB, last_imu_.gyro_B - s.gyro_bias};
 }
 
+Vec3 SensorSuite::Acceleration_W() const {
+  const NavState& s = filter_.nominal();
+  return s.q_WB * (last_imu_.accel_B - s.accel_bias) - Vec3(0, 0, kGravity);
+}
+
 EstimateSample SensorSuite::Sample(const State& truth) const {
   EstimateSample s;
   s.estimate = Estimate();

@@ -61,6 +61,9 @@ class SensorSuite {
   // What the controller sees: the filter's position, velocity and attitude, and the latest
   // gyroscope reading less the estimated bias.
   State Estimate() const;
+  // The acceleration [m/s^2] (world, gravity not included) the latest accelerometer reading
+  // gives: less the estimated bias, turned by the estimated attitude.
+  Vec3 Acceleration_W() const;
   // The estimate against `truth`.
   EstimateSample Sample(const State& truth) const;
   // The truth in the filter's terms (with the IMU's current biases), for its errors.

@@ -152,8 +152,13 @@ class VehicleWorld {
   State Truth() const { return sim_->VehicleState(); }
   // What a controller flies on: the estimate with sensors on, else `truth`.
   State Seen(const State& truth) const { return sensing_ ? sensing_->Estimate() : truth; }
-  // What a controller senses besides the state: the wind at the vehicle and the rotors' thrusts.
-  Surroundings Now() const { return {air_.wind(), sim_->RotorThrusts()}; }
+  // What a controller senses besides the state: the wind at the vehicle, the rotors' thrusts
+  // and the acceleration (the IMU's with sensors on, else the physics').
+  Surroundings Now() const {
+    return {air_.wind(), sim_->RotorThrusts(),
+            sensing_ ? sensing_->Acceleration_W() : sim_->LinearAcceleration_W(),
+            sensing_.has_value()};
+  }
   // The inner loops below `command` for the next physics step, from `seen`; false (zero
   // thrusts) when the command or the state is not finite.
   bool Command(const ControlCommand& command, const State& seen) {

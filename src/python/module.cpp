@@ -583,6 +583,13 @@ class BuiltinController {
     if (!(rate > 0)) throw py::value_error("rate must be positive [Hz]");
     config_.kind = kind;
     config_.rate = rate;
+    if (kind == "indi" || config_.observer.enabled) {
+      throw py::value_error(
+          "builtin_controller: \"" + kind +
+          "\" measures the vehicle's acceleration and rotor thrusts, which a state dict does not "
+          "carry; fly it by name: Simulator.run(\"" +
+          kind + "\", trajectory)");
+    }
     controller_ = Checked([&] {
       config_.Validate();
       return MakeController(config_, vehicle_);

@@ -964,7 +964,8 @@ std::vector<KeyTable> BuiltInKeyTables() {
   std::vector<KeyRow> controller = KeyRows<ControllerConfig>("controller");
   controller.insert(controller.begin(),
                     {"controller.kind", "", "\"" + control.kind + "\"", Controllers().NameList(),
-                     "the controller: the built-ins (cascade, geometric se3) or a registered one"});
+                     "the controller: the built-ins (cascade, geometric se3, incremental indi) or "
+                     "a registered one"});
   std::vector<KeyRow> aero = KeyRows<AeroParams>("aero");
   aero.insert(aero.begin(), {"aero.drag", "", "false", "true or false",
                              "body_drag and rotor_drag at once (read first)"});
@@ -1002,7 +1003,7 @@ std::vector<KeyTable> PluginKeyTables() {
       PluginParameters params = registry.Parameters(name);
       if (params.empty()) continue;
       plugins.push_back({table + "] kind = \"" + name,
-                         "a registered " + table + "'s own keys, beside the table's others",
+                         "the " + table + " " + name + "'s own keys, beside the table's others",
                          KeyRowsOf(params, table)});
     }
   };

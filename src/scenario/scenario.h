@@ -32,7 +32,7 @@ namespace aerobox {
 //                                        #   max_refinements
 //   [vehicle]                            # optional: kind ("tello", "crazyflie") and
 //                                        #   overrides of its values (README: The vehicle)
-//   [controller]                         # optional: kind ("cascade", "se3"), rate, gains
+//   [controller]                         # optional: kind ("cascade", "se3", "indi"), rate, gains
 //   [flight]                             # optional: settle_time, tolerances, yaw
 //   [wind]                               # optional: mean, turbulence, intensity, gusts
 //   [aero]                               # optional: drag, body_drag, rotor_drag

@@ -299,7 +299,7 @@ TEST_CASE("[vehicle], [controller] and [flight]: errors name the line and the ke
           .find("vehicle.rotor_speed_max: give the rotor limits as thrusts or as speeds") !=
       std::string::npos);
   CHECK(ScenarioError("map = \"m.txt\"\n[controller]\nkind = \"lqr\"\n") ==
-        "scenes/x/scenario.toml:3: controller.kind: expected cascade or se3, got \"lqr\"");
+        "scenes/x/scenario.toml:3: controller.kind: expected cascade, indi or se3, got \"lqr\"");
   CHECK(ScenarioError("map = \"m.txt\"\n[controller]\nrate = 300\n") ==
         "scenes/x/scenario.toml:3: controller.rate: must divide the 1000 Hz physics rate (e.g. "
         "1000, 500, 250, 200, 100)");

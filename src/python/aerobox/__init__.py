@@ -390,7 +390,7 @@ class Simulator:
         """Flies `trajectory` with `controller` and returns RotorPy's result dict.
 
         controller: any object with update(t, state, flat_output) -> dict, or a built-in by
-            name ("cascade", "se3"). The dict holds cmd_motor_thrusts [N] (4), or
+            name ("cascade", "se3", "indi"). The dict holds cmd_motor_thrusts [N] (4), or
             cmd_motor_speeds [rad/s] (through k_eta), or cmd_thrust [N] with cmd_moment [N m]
             (body), cmd_w [rad/s] (body) or cmd_q ([i, j, k, w]; with it, aerobox's own
             cmd_w_ff [rad/s] adds body rates to the attitude loop's, a feed-forward); extra
