@@ -5,6 +5,7 @@
 #include <cmath>
 #include <tuple>
 
+#include "common/drag.h"
 #include "common/error.h"
 #include "common/number_format.h"
 #include "planning/path_simplify.h"
@@ -107,6 +108,35 @@ namespace {
 double ControllerTilt(const FlightSetup& setup) {
   return setup.controller.kind == "se3" ? setup.controller.se3.max_tilt
                                         : setup.controller.cascade.max_tilt;
+}
+
+// The wind beyond its mean [m/s] a trajectory keeps a reserve for: wind_reserve times the
+// turbulence's largest intensity, plus the strongest gust's peak; none when wind_reserve is 0.
+double WindExcess(const FlightSetup& setup) {
+  const WindParams& wind = setup.wind;
+  const double reserve = setup.planning.trajectory.wind_reserve;
+  if (!(reserve > 0)) return 0.0;
+  const double turbulence =
+      wind.turbulence == Turbulence::kDryden ? reserve * wind.intensity.maxCoeff() : 0.0;
+  double gust = 0.0;
+  for (const Gust& g : wind.gusts) gust = std::max(gust, std::abs(g.peak));
+  return turbulence + gust;
+}
+
+// Keeps back, from the tilt and the rotors' top thrust, the drag [m/s^2] that `excess` [m/s]
+// more wind adds to the mean wind's on a vehicle at rest: the trajectory is slower, and the
+// controller has the margin to meet the wind. (Moving, the vehicle meets more drag per m/s of
+// wind; the trajectory's thrust margin is kept for that and for the controller.)
+void ReserveForWind(double excess, TrajectoryParams* params) {
+  FlatnessLimits& limits = params->vehicle;
+  const double mean = limits.wind.norm();
+  const double extra = DragAcceleration(limits.drag, Vec3(mean + excess, 0, 0)).norm() -
+                       DragAcceleration(limits.drag, Vec3(mean, 0, 0)).norm();
+  if (!(extra > 0)) return;
+  params->max_tilt = std::max(0.05, params->max_tilt - std::atan(extra / kGravity));
+  const double hover = limits.mass * kGravity / kNumRotors;
+  limits.max_rotor_thrust =
+      std::max(hover * 1.05, limits.max_rotor_thrust - limits.mass * extra / kNumRotors);
 }
 
 }  // namespace
@@ -433,6 +463,7 @@ TrajectoryParams TrajectoryParamsFor(const FlightSetup& setup) {
     if (setup.aero.rotor_drag) limits.drag.linear = drag.linear;
     if (setup.aero.body_drag) limits.drag.quadratic = drag.quadratic;
     limits.wind = setup.wind.mean;
+    ReserveForWind(WindExcess(setup), &params);
   }
   return params;
 }

@@ -251,6 +251,10 @@ void TrajectoryParams::Describe(Archive& a) {
            0.1, 50.0);
   a.Number({"max_vertical_speed", "m/s", "min-time: the fastest climb or descent"},
            &max_vertical_speed, 0.01, 8.0);
+  a.Number({"wind_reserve", "",
+            "min-time, in wind with drag: tilt and thrust kept for this many turbulence "
+            "intensities beyond the mean wind, plus the strongest gust (0: none)"},
+           &wind_reserve, 0.0, 10.0);
   a.Boolean({"corridors", "", "keep the trajectory in boxes around the path (Ipopt)"},
             &use_corridors);
   a.Number({"corridor_growth", "m", "how far a corridor may reach past its segment's box"},

@@ -39,7 +39,11 @@ struct TrajectoryParams {
   double max_tilt = 0.5;            // [rad]
   double max_rate = 6.0;            // [rad/s] body rate
   double max_vertical_speed = 2.5;  // [m/s] (below the cascade's 3, for its feedback)
-  int time_iterations = 30;         // rounds of per-segment time scaling
+  // kMinTime, in wind: the wind beyond its mean that tilt and thrust are kept for, in turbulence
+  // intensities (the gusts' peaks are added); the mission turns it into a smaller max_tilt and
+  // rotor limit (mission/plan.h)
+  double wind_reserve = 2.0;
+  int time_iterations = 30;  // rounds of per-segment time scaling
   // kMinTime: straight segments longer than this are cut in pieces, so that the vehicle can
   // cruise along them at its top speed [m]
   double cruise_piece = 4.0;
