@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Plots the robustness benchmark's flights (aerobox bench --sections robustness
---robustness-csv FILE): tracking RMS against the mean wind per map, each flight a dot (a cross
-when it failed), and the share that reached the goal, into one PNG.
+--robustness-csv FILE): tracking RMS against the mean wind per controller (per map when the file
+has no controller column), each flight a dot (a cross when it failed), and the share that
+reached the goal over every map, into one PNG.
 
 Usage: tools/plot_robustness.py robustness.csv [robustness.png]
 (default output: robustness.png beside the CSV). Needs Debian's python3-pandas and
@@ -24,12 +25,13 @@ def main(argv):
         return target
 
     figure, (rms_axis, rate_axis) = plt.subplots(1, 2, figsize=(12, 4.5))
-    maps = list(dict.fromkeys(data["map"]))
+    group = "controller" if "controller" in data.columns else "map"
+    groups = list(dict.fromkeys(data[group]))
     winds = sorted(set(data["wind_mps"]))
-    width = 0.8 / max(1, len(maps))
-    for i, name in enumerate(maps):
-        rows = data[data["map"] == name]
-        offset = (i - (len(maps) - 1) / 2) * width * 0.6
+    width = 0.8 / max(1, len(groups))
+    for i, name in enumerate(groups):
+        rows = data[data[group] == name]
+        offset = (i - (len(groups) - 1) / 2) * width * 0.6
         ok = rows[rows["status"] == "reached goal"]
         bad = rows[rows["status"] != "reached goal"]
         colour = f"C{i}"

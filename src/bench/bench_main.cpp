@@ -8,6 +8,7 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -89,6 +90,7 @@ void SpeedTable(const std::string& scenes, const std::string& maps, std::ostream
 // What every section may need: the command's options, and the progress line.
 struct BenchContext {
   std::string scenes, maps, city, robustness_csv;
+  std::vector<std::string> controllers;  // robustness: the controllers flown
   int seeds = 20;
   double seconds = 1.0;
   BenchSize size;
@@ -180,9 +182,12 @@ const std::vector<BenchSection>& Sections() {
          for (const std::string& map : c.MapNames()) params.scenarios.push_back(c.Scenario(map));
          params.seeds = c.seeds;
          params.csv = c.robustness_csv;
+         params.controllers = c.controllers;
          out << "## Robustness: wind, turbulence, drag and sensors, " << c.seeds
-             << " seeds per map and wind\n\n";
+             << " seeds per map, controller and wind\n\n";
          RobustnessTable(params, out, *c.progress);
+         out << "\n";
+         WindEightTable(params, out, *c.progress);
        }},
       {"replanning",
        [](const BenchContext& c, std::ostream& out) {
@@ -295,6 +300,11 @@ int main(int argc, char** argv) {
   app.add_option("--robustness-csv", robustness_csv,
                  "robustness: also write one row per flight to this CSV (tools/plot_robustness.py "
                  "plots it)");
+  std::string robustness_controllers = "cascade,se3,indi,cascade+observer,se3+observer";
+  app.add_option("--controllers", robustness_controllers,
+                 "robustness: the controllers flown, comma-separated kinds, each alone or with "
+                 "+observer")
+      ->capture_default_str();
   app.add_option("--seeds", bench_seeds, "runs per planner and map (planning, robustness)")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
@@ -312,8 +322,15 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& error) {
     return app.exit(error) == 0 ? 0 : 2;
   }
+  std::vector<std::string> controllers;
   try {
     aerobox::Wanted(bench_sections);  // every option before any work
+    std::istringstream list(robustness_controllers);
+    for (std::string name; std::getline(list, name, ',');) controllers.push_back(name);
+    aerobox::ValidateRobustnessControllers(controllers);
+  } catch (const std::invalid_argument& error) {
+    std::cerr << "aerobox bench: error: --controllers: " << error.what() << "\n";
+    return 2;
   } catch (const aerobox::InputError& error) {
     std::cerr << "aerobox bench: error: " << error.what() << "\n";
     return 2;
@@ -342,6 +359,7 @@ int main(int argc, char** argv) {
     context.maps = bench_maps;
     context.city = bench_city;
     context.robustness_csv = robustness_csv;
+    context.controllers = controllers;
     context.seeds = bench_seeds;
     context.seconds = bench_seconds;
     context.size = size;
