@@ -46,6 +46,12 @@ void ControllerConfig::Describe(Archive& a) {
   a.Vector({"se3_attitude_gain", "1/s^2", "se3: on the attitude error"}, &se3.attitude_gain, 0,
            1e5);
   a.Vector({"se3_rate_gain", "1/s", "se3: on the body-rate error"}, &se3.rate_gain, 0, 1e5);
+  a.Vector({"se3_position_integral", "1/s^3",
+            "se3: on the position error's integral, below position times velocity gain (none "
+            "with the observer)"},
+           &se3.position_integral, 0, 1e5);
+  a.Number({"se3_integral_limit", "m/s^2", "se3: the integral term's anti-windup clamp"},
+           &se3.integral_limit, 0, 100);
   observer.Describe(a);
   // the attitude and rate loops below any command that needs them
   a.Vector({"attitude_gain", "1/s", "rate per radian of error: roll, pitch, yaw"},
@@ -86,7 +92,10 @@ Registry<ControllerFactory>& Controllers() {
       return std::make_unique<CascadeController>(config.cascade, 1.0 / config.rate, vehicle.mass);
     });
     r.Register("se3", [](const ControllerConfig& config, const QuadParams& vehicle) {
-      return std::make_unique<Se3Controller>(config.se3, vehicle);
+      Se3Params se3 = config.se3;
+      // the observer meets a steady force itself: an integral too would only add a slow mode
+      if (config.observer.enabled) se3.position_integral = Vec3::Zero();
+      return std::make_unique<Se3Controller>(se3, vehicle);
     });
     r.Register(
         "indi",

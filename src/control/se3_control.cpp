@@ -14,6 +14,8 @@ Mat3 Hat(const Vec3& w) {
 
 Vec3 Vee(const Mat3& m) { return Vec3(m(2, 1), m(0, 2), m(1, 0)); }
 
+constexpr double kSteadySpeed = 0.2;  // [m/s] the integral's conditional integration
+
 }  // namespace
 
 void Se3Params::Validate() const {
@@ -23,6 +25,15 @@ void Se3Params::Validate() const {
     if (!gain->allFinite() || (gain->array() <= 0).any()) {
       throw std::invalid_argument(std::string("Se3Params.") + name + " must be > 0");
     }
+  }
+  const Vec3 stable = position_gain.cwiseProduct(velocity_gain);  // Routh's bound
+  if (!position_integral.allFinite() || (position_integral.array() < 0).any() ||
+      (position_integral.array() >= stable.array()).any()) {
+    throw std::invalid_argument(
+        "Se3Params.position_integral must be >= 0 and below position_gain * velocity_gain");
+  }
+  if (!(integral_limit >= 0 && std::isfinite(integral_limit))) {
+    throw std::invalid_argument("Se3Params.integral_limit must be >= 0");
   }
   if (!(max_tilt > 0 && max_tilt < M_PI / 2)) {
     throw std::invalid_argument("Se3Params.max_tilt must be in (0, pi/2)");
@@ -79,7 +90,7 @@ Vec3 AttitudeAcceleration(const Se3Params& gains, const Mat3& r, const Vec3& w_B
          Hat(w_B) * r_rel * target.w_d + r_rel * target.w_dot_d;
 }
 
-ControlStatus Se3Controller::Update(double, const State& state, const FlatOutput& setpoint,
+ControlStatus Se3Controller::Update(double t, const State& state, const FlatOutput& setpoint,
                                     ControlCommand* command) {
   if (!setpoint.AllFinite() || !state.p_W.allFinite() || !state.v_W.allFinite() ||
       !state.q_WB.coeffs().allFinite() || !state.w_B.allFinite()) {
@@ -91,9 +102,16 @@ ControlStatus Se3Controller::Update(double, const State& state, const FlatOutput
 
   // the force (per unit mass): feedback, feed-forward, gravity; its tilt limited as the
   // cascade's, shrinking the horizontal part
+  // the integral grows only near a steady state (the velocity error under 0.2 m/s), so that a
+  // transient, a step or a take-off, does not wind it up
+  const double dt = last_t_ && e_v.norm() < kSteadySpeed ? std::max(0.0, t - *last_t_) : 0.0;
+  last_t_ = t;
+  integral_ = (integral_ - dt * params_.position_integral.cwiseProduct(e_x))
+                  .cwiseMax(-params_.integral_limit)
+                  .cwiseMin(params_.integral_limit);
   const Vec3 a =
       LimitTilt(-params_.position_gain.cwiseProduct(e_x) - params_.velocity_gain.cwiseProduct(e_v) +
-                    setpoint.a_W + Vec3(0, 0, kGravity),
+                    integral_ + setpoint.a_W + Vec3(0, 0, kGravity),
                 params_.max_tilt);
   command->thrust = std::max(0.0, mass_ * a.dot(r.col(2)));
   const AttitudeTarget target = FlatAttitude(a, setpoint);
