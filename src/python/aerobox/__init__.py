@@ -496,7 +496,10 @@ def builtin_controller(sim, kind="cascade", rate=None):
     of it below it,
     called at `rate` [Hz] (None: the scenario's controller rate, which run() also calls it at
     by default): cmd_w [rad/s], cmd_moment [N m], cmd_motor_thrusts [N],
-    cmd_motor_speeds [rad/s]. For comparing, or wrapping, in Python."""
+    cmd_motor_speeds [rad/s]. For comparing, or wrapping, in Python. Not "indi" nor a
+    controller with the disturbance observer: they measure the acceleration and the rotors'
+    thrusts, which a state dict does not carry (fly them by name with Simulator.run); asking
+    raises ValueError."""
     if rate is None:
         rate = sim._core.setup.control_rate
     return _aerobox.BuiltinController(sim._core.setup, kind, float(rate))
