@@ -194,6 +194,7 @@ double EightMeanError(const std::string& controller, double speed) {
 }  // namespace
 
 void ValidateRobustnessControllers(const std::vector<std::string>& controllers) {
+  if (controllers.empty()) throw std::invalid_argument("no controller given");
   for (const std::string& name : controllers) {
     ControllerConfig config;
     ApplyController(name, &config);
@@ -218,6 +219,11 @@ void RobustnessTable(const RobustnessParams& params, std::ostream& out, Progress
     csv << "map,controller,wind_mps,seed,status,tracking_rms_m,tracking_max_m,min_clearance_m,"
            "estimate_rms_m\n";
   }
+  // a row as each cell ends (an interrupted run keeps the rows done), then the totals
+  out << "| map | controller | mean wind [m/s] | turbulence u, v, w [m/s] | reached | tracking "
+         "RMS, median (worst) [m] | tracking max, worst [m] | min clearance, least [m] | "
+         "estimate RMS, median [mm] | failures (seed: why) |\n"
+         "|---|---|---|---|---|---|---|---|---|---|\n";
   std::vector<Cell> cells;
   for (const std::string& scenario : params.scenarios) {
     const std::string name = std::filesystem::path(scenario).parent_path().filename().string();
@@ -234,18 +240,15 @@ void RobustnessTable(const RobustnessParams& params, std::ostream& out, Progress
           }
           cell.runs.push_back(run);
         }
+        progress.Clear();
+        PrintRow(cell, out);
+        out << std::flush;
         cells.push_back(cell);
       }
     }
   }
-  progress.Clear();
-  out << "Reached the goal, over every map:\n\n";
+  out << "\nReached the goal, over every map:\n\n";
   PrintTotals(params, cells, out);
-  out << "\n| map | controller | mean wind [m/s] | turbulence u, v, w [m/s] | reached | tracking "
-         "RMS, median (worst) [m] | tracking max, worst [m] | min clearance, least [m] | "
-         "estimate RMS, median [mm] | failures (seed: why) |\n"
-         "|---|---|---|---|---|---|---|---|---|---|\n";
-  for (const Cell& cell : cells) PrintRow(cell, out);
   out << std::flush;
 }
 

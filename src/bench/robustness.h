@@ -24,12 +24,13 @@ struct RobustnessParams {
 // registered kind (indi has no observer: it measures the force itself).
 void ValidateRobustnessControllers(const std::vector<std::string>& controllers);
 
-// Prints two Markdown tables: per controller and wind, the flights that reached the goal over
-// every map; then per map, controller and wind, the success rate, tracking RMS median and worst,
-// minimum clearance, estimate RMS median and the failures by seed. Progress goes to `progress`.
+// Prints two Markdown tables: per map, controller and wind (a row as each ends), the success
+// rate, tracking RMS median and worst, minimum clearance, estimate RMS median and the failures
+// by seed; then per controller and wind, the flights that reached the goal over every map.
+// Progress goes to `progress`.
 void RobustnessTable(const RobustnessParams& params, std::ostream& out, ProgressDisplay& progress);
 
-// A figure-8 (2 m across, at up to 2 m/s, one loop) in a constant wind along x at each of
+// A figure-8 (4 x 2 m, at up to 2 m/s, one loop) in a constant wind along x at each of
 // `params.winds`, with drag, an IMU and motion capture: the mean position error of each of
 // `params.controllers`, beside the errors Neural-Fly published (O'Connell et al., Science
 // Robotics 2022) for their baseline, INDI and L1 adaptive controllers.

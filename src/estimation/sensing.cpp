@@ -89,6 +89,9 @@ SensorSuite::SensorSuite(const SensorParams& params, std::uint64_t seed, double 
   step_ = step;
   last_imu_.t = t;
   last_imu_.gyro_B = truth.w_B;
+  // until the first reading: the specific force of a vehicle held still (what hover thrust or
+  // the floor gives), so that Acceleration_W reads no acceleration rather than a free fall
+  last_imu_.accel_B = truth.q_WB.normalized().inverse() * Vec3(0, 0, kGravity);
 }
 
 void SensorSuite::AfterStep(double t, const State& before, const State& now, const Vec3& a_W) {

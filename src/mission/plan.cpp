@@ -134,9 +134,11 @@ void ReserveForWind(double excess, TrajectoryParams* params) {
                        DragAcceleration(limits.drag, Vec3(mean, 0, 0)).norm();
   if (!(extra > 0)) return;
   params->max_tilt = std::max(0.05, params->max_tilt - std::atan(extra / kGravity));
+  // the rotors keep at least 5 % above hover (never more than they have)
   const double hover = limits.mass * kGravity / kNumRotors;
+  const double floor = std::min(limits.max_rotor_thrust, 1.05 * hover);
   limits.max_rotor_thrust =
-      std::max(hover * 1.05, limits.max_rotor_thrust - limits.mass * extra / kNumRotors);
+      std::max(floor, limits.max_rotor_thrust - limits.mass * extra / kNumRotors);
 }
 
 }  // namespace
@@ -449,6 +451,14 @@ TrajectoryParams TrajectoryParamsFor(const FlightSetup& setup) {
   limits.max_rotor_thrust = v.MaxRotorThrust();
   limits.max_speed = v.max_speed;
   limits.yaw = 0.0;  // the flight holds the start's yaw, level at rest (FlyTrajectory)
+  if (setup.aero.Enabled()) {
+    // the thrust also pays for the drag of the parts that are on, in the mean wind
+    const DragModel drag = LumpedDrag(v);
+    if (setup.aero.rotor_drag) limits.drag.linear = drag.linear;
+    if (setup.aero.body_drag) limits.drag.quadratic = drag.quadratic;
+    limits.wind = setup.wind.mean;
+    ReserveForWind(WindExcess(setup), &params);  // before the braking below uses the tilt
+  }
   if (setup.HasUnknown()) {
     // boxes may appear: no faster than the vehicle can stop within what its sensor sees
     const double margin =
@@ -456,14 +466,6 @@ TrajectoryParams TrajectoryParamsFor(const FlightSetup& setup) {
     params.max_speed =
         std::min(params.max_speed, SensingSpeedLimit(setup.sensing, setup.replan,
                                                      BrakingDeceleration(params.max_tilt), margin));
-  }
-  if (setup.aero.Enabled()) {
-    // the thrust also pays for the drag of the parts that are on, in the mean wind
-    const DragModel drag = LumpedDrag(v);
-    if (setup.aero.rotor_drag) limits.drag.linear = drag.linear;
-    if (setup.aero.body_drag) limits.drag.quadratic = drag.quadratic;
-    limits.wind = setup.wind.mean;
-    ReserveForWind(WindExcess(setup), &params);
   }
   return params;
 }

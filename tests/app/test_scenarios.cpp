@@ -173,8 +173,14 @@ TEST_CASE("scenario windy_window: the trajectory keeps a reserve for the wind") 
   CHECK(number(reserved, "trajectory_duration_s") >
         1.1 * number(still_limits, "trajectory_duration_s"));
   CHECK(number(reserved, "tracking_rms_m") < number(still_limits, "tracking_rms_m"));
-  const Flight calm = fly("window", {});
-  const Flight calm_reserved = fly("window", {"--set", "trajectory.wind_reserve=5"});
+  // still air with drag on: the trajectory pays for the drag, and keeps no reserve
+  const std::vector<std::string> drag = {"--set", "aero.body_drag=true", "--set",
+                                         "aero.rotor_drag=true"};
+  std::vector<std::string> reserve = drag;
+  reserve.insert(reserve.end(), {"--set", "trajectory.wind_reserve=5"});
+  const Flight calm = fly("window", drag);
+  const Flight calm_reserved = fly("window", reserve);
+  CHECK(calm.summary["aero"]["rotor_drag"] == true);
   CHECK(number(calm, "trajectory_duration_s") == number(calm_reserved, "trajectory_duration_s"));
 }
 

@@ -106,7 +106,7 @@ TEST_CASE("indi holds hover against a step in external force: the error peaks, t
   const double peak = PeakError(indi, 1.0, 5.0);
   const double settled = PeakError(indi, 3.0, 5.0);
   // the push moves it by centimetres at most, and two seconds on the error is under 5 mm and a
-  // fifth of its peak; se3, which has no integral action, stays off by F / (m k_p), 15 cm
+  // fifth of its peak; se3, which has no integral action, stays off by F / (m k_p), 18 cm
   CHECK(peak < 0.03);
   CHECK(settled < 0.005);
   CHECK(settled < peak / 5);
@@ -161,6 +161,14 @@ TEST_CASE("indi measures the ground truth without sensors, the IMU with them") {
   const std::vector<TelemetrySample> measured = PushedHover(Kind("indi"), kPush, nullptr, sensors);
   REQUIRE(measured.back().t > 4.9);
   CHECK(measured.back().report[imu] == 1.0);
+  // the IMU's first reading is a vehicle held still, not a free fall: no kick at the start.
+  // Within 1 cm in the first second (measured 7.8 mm for both, against 3.2 mm for se3, which
+  // reads no acceleration: the IMU's turn-on bias, not yet learnt by the filter, reads as a
+  // force); with a free fall read first, 11 mm and 54 mm.
+  CHECK(PeakError(measured, 0.0, 1.0) < 0.01);
+  ControllerConfig observed = Kind("se3");
+  observed.observer.enabled = true;
+  CHECK(PeakError(PushedHover(observed, kPush, nullptr, sensors), 0.0, 1.0) < 0.01);
   // on the IMU's noisy, biased readings and the filter's estimate it still holds the push off:
   // within 5 cm at worst and 2 cm at the end (the estimate's own error is about 1 cm)
   CHECK(PeakError(measured, 1.0, 5.0) < 0.05);
