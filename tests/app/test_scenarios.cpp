@@ -106,8 +106,8 @@ TEST_CASE("scenario windy_window: wind, drag and sensors, five seeds") {
 
 // The window in a 3 m/s wind with Dryden turbulence of 1 m/s, drag and sensors on, on three
 // seeds: the controllers that measure what pushes the vehicle hold the minimum-time trajectory
-// (measured on five seeds: indi 1.5-1.8 cm RMS, at most 3.8 cm; se3 with the disturbance
-// observer 2.5-2.9 cm, 7.0 cm; the cascade with it 3.0-3.5 cm, 7.3 cm), where the cascade
+// (measured on five seeds: indi 1.4-1.8 cm RMS, at most 3.8 cm; se3 with the disturbance
+// observer 1.9-2.5 cm, 5.1 cm; the cascade with it 2.6-3.3 cm, 7.4 cm), where the cascade
 // alone, fighting the wind with its integrators, is off by 9.6-17 cm RMS.
 TEST_CASE("scenario window_in_wind: every controller kind, indi and the observer hold") {
   struct Kind {
