@@ -55,6 +55,14 @@ void FlightSetup::Validate() const {
           FormatNumber(controller.rate) + " Hz (the sensor reads at control steps)");
     }
   }
+  if (controller.kind == "indi" && sensors.imu.enabled && sensors.imu.rate < controller.rate) {
+    // INDI differences the gyroscope at each control step: a reading held over several would
+    // give zero, then a spike
+    throw std::invalid_argument("sensors.imu.rate: " + FormatNumber(sensors.imu.rate) +
+                                " Hz must be at least the controller's rate " +
+                                FormatNumber(controller.rate) +
+                                " Hz for indi, which differences the gyroscope at each step");
+  }
   if (TrajectoryGenerators().Find(planning.trajectory_method) == nullptr) {
     throw std::invalid_argument("unknown trajectory generator '" + planning.trajectory_method +
                                 "'");

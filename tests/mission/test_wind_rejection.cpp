@@ -6,11 +6,13 @@
 #include <algorithm>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <vector>
 
 #include "control/controllers.h"
 #include "flight_test_util.h"
 #include "mission/flight_parts.h"
+#include "mission/setup.h"
 
 namespace aerobox {
 namespace {
@@ -173,6 +175,21 @@ TEST_CASE("indi measures the ground truth without sensors, the IMU with them") {
   // within 5 cm at worst and 2 cm at the end (the estimate's own error is about 1 cm)
   CHECK(PeakError(measured, 1.0, 5.0) < 0.05);
   CHECK(PeakError(measured, 4.0, 5.0) < 0.02);
+}
+
+TEST_CASE("indi on an IMU slower than the controller is refused, naming the key") {
+  FlightSetup setup;
+  setup.controller.kind = "indi";
+  setup.sensors.imu.enabled = true;
+  setup.sensors.position.enabled = true;
+  setup.sensors.imu.rate = 100.0;  // the controller runs at 250 Hz
+  CHECK_THROWS_WITH_AS(setup.Validate(), doctest::Contains("sensors.imu.rate: 100 Hz"),
+                       std::invalid_argument);
+  setup.sensors.imu.rate = 250.0;
+  CHECK_NOTHROW(setup.Validate());
+  setup.controller.kind = "se3";  // reads no acceleration: any IMU rate will do
+  setup.sensors.imu.rate = 100.0;
+  CHECK_NOTHROW(setup.Validate());
 }
 
 }  // namespace aerobox
