@@ -196,14 +196,15 @@ std::string DescribeVehicle(const std::string& kind, const QuadParams& v) {
   return out.str();
 }
 
-std::string DescribeControl(const ControllerConfig& c, const SensorParams& sensors) {
+std::string DescribeControl(const FlightSetup& setup) {
+  const ControllerConfig& c = setup.controller;
   std::ostringstream out;
   out << c.kind << " at " << FormatNumber(c.rate) << " Hz: ";
   if (c.observer.enabled) {
     out << "disturbance observer (" << FormatNumber(c.observer.time_constant) << " s); ";
   }
-  if (MeasuresAcceleration(c)) {
-    out << "measures " << (sensors.Enabled() ? "the IMU" : "the ground truth (no IMU)") << "; ";
+  if (const std::string measures = setup.ControllerMeasures(); !measures.empty()) {
+    out << "measures: " << measures << "; ";
   }
   if (c.kind == "cascade") {
     out << "position " << FormatVector(c.cascade.position_gain) << " 1/s, velocity "
@@ -232,7 +233,9 @@ std::string DescribeAir(const FlightSetup& setup) {
   if (!w.gusts.empty()) out << ", " << w.gusts.size() << " gust(s)";
   out << "; drag: body " << (setup.aero.body_drag ? "on" : "off") << ", rotor "
       << (setup.aero.rotor_drag ? "on" : "off")
-      << (setup.controller.drag_feedforward ? ", fed forward by the controller" : "");
+      << (MeasuresAcceleration(setup.controller) ? ", measured by the controller"
+          : setup.controller.drag_feedforward    ? ", fed forward by the controller"
+                                                 : "");
   return out.str();
 }
 
@@ -289,7 +292,7 @@ int RunCheck(const FlightSetup& setup, std::ostream& out) {
   // the settings in force, after the scenario's tables
   const FlightParams& f = setup.flight;
   Row(out, "vehicle") << DescribeVehicle(setup.vehicle_kind, setup.vehicle) << "\n";
-  Row(out, "control") << DescribeControl(setup.controller, setup.sensors) << "\n";
+  Row(out, "control") << DescribeControl(setup) << "\n";
   Row(out, "flight") << "goal within " << FormatNumber(f.goal_tolerance) << " m below "
                      << FormatNumber(f.goal_speed) << " m/s, " << FormatNumber(f.settle_time)
                      << " s after the trajectory; fly-away at " << FormatNumber(f.flyaway_distance)

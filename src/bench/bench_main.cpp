@@ -325,9 +325,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> controllers;
   try {
     aerobox::Wanted(bench_sections);  // every option before any work
-    std::istringstream list(robustness_controllers);
-    for (std::string name; std::getline(list, name, ',');) controllers.push_back(name);
-    aerobox::ValidateRobustnessControllers(controllers);
+    controllers = aerobox::RobustnessControllers(robustness_controllers);
   } catch (const std::invalid_argument& error) {
     std::cerr << "aerobox bench: error: --controllers: " << error.what() << "\n";
     return 2;

@@ -14,7 +14,6 @@
 #include "mission/mission.h"
 #include "mission/reference_curves.h"
 #include "scenario/scenario.h"
-#include "scene/scene_mjcf.h"
 
 namespace aerobox {
 namespace {
@@ -178,13 +177,7 @@ double EightMeanError(const std::string& controller, double speed) {
     sum += s.position_error;
     ++samples;
   };
-  Map room;
-  room.name = "room";
-  room.bounds = {Vec3(-10, -10, 0), Vec3(10, 10, 6)};
-  SceneOptions scene;
-  scene.vehicle_position = Eight(0.0);
-  Simulation sim = Simulation::FromXml(BuildSceneMjcf(room, vehicle, scene), "room");
-  sim.SetRotorThrusts(Vec4::Constant(vehicle.HoverThrustPerRotor()));
+  Simulation sim = RoomAt(Eight(0.0), Map(), vehicle);
   const FlightResult result =
       FlyTrajectory(FromFunction(EightDuration(), Eight), FlightParams(), loop, &sim);
   const bool ok = result.status == FlightStatus::kReachedGoal && samples > 0;
@@ -192,6 +185,14 @@ double EightMeanError(const std::string& controller, double speed) {
 }
 
 }  // namespace
+
+std::vector<std::string> RobustnessControllers(const std::string& list) {
+  std::vector<std::string> controllers;
+  std::istringstream names(list);
+  for (std::string name; std::getline(names, name, ',');) controllers.push_back(name);
+  ValidateRobustnessControllers(controllers);
+  return controllers;
+}
 
 void ValidateRobustnessControllers(const std::vector<std::string>& controllers) {
   if (controllers.empty()) throw std::invalid_argument("no controller given");

@@ -20,8 +20,10 @@ struct RobustnessParams {
   std::string csv;                                   // one row per flight there ("": none)
 };
 
-// Throws std::invalid_argument naming a controller that is not "kind" or "kind+observer" of a
-// registered kind (indi has no observer: it measures the force itself).
+// The controllers of a comma-separated `list`; throws std::invalid_argument for none, or naming
+// one that is not "kind" or "kind+observer" of a registered kind (indi has no observer: it
+// measures the force itself).
+std::vector<std::string> RobustnessControllers(const std::string& list);
 void ValidateRobustnessControllers(const std::vector<std::string>& controllers);
 
 // Prints two Markdown tables: per map, controller and wind (a row as each ends), the success

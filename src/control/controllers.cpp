@@ -150,8 +150,9 @@ std::unique_ptr<Controller> MakeController(const ControllerConfig& config,
     return WithDisturbanceObserver(std::move(controller), config.observer, vehicle.mass,
                                    1.0 / config.rate);
   }
-  // indi measures drag with the rest, as the observer does: fed forward too, it would count twice
-  if (!config.drag_feedforward || config.kind == "indi") return controller;
+  // a controller that measures the force measures the drag with it: fed forward too, it would
+  // count twice
+  if (!config.drag_feedforward || MeasuresAcceleration(config)) return controller;
   return WithDragFeedForward(std::move(controller), LumpedDrag(vehicle));
 }
 

@@ -20,9 +20,8 @@ DisturbanceObserver::DisturbanceObserver(double time_constant, double mass)
     : time_constant_(time_constant), mass_(mass) {}
 
 void DisturbanceObserver::Update(double dt, const Surroundings& now, const Quat& q_WB) {
-  const double thrust = now.rotor_thrusts.sum();
-  const Vec3 raw = mass_ * now.acceleration_W - q_WB.normalized() * Vec3(0, 0, thrust) +
-                   Vec3(0, 0, mass_ * kGravity);
+  const Vec3 thrust_W = q_WB.normalized() * Vec3(0, 0, now.rotor_thrusts.sum());
+  const Vec3 raw = ExternalForce(mass_, now.acceleration_W, thrust_W);
   if (!raw.allFinite()) return;
   const double blend = started_ ? 1.0 - std::exp(-dt / time_constant_) : 1.0;
   force_W_ += blend * (raw - force_W_);

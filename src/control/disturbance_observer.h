@@ -16,6 +16,13 @@
 
 namespace aerobox {
 
+// What else pushes the vehicle [N, world], by Newton's law: its mass [kg] times its measured
+// acceleration a_W [m/s^2] (gravity not included), less the rotors' thrust [N, world], plus its
+// weight. INDI reports it too (control/indi_control.h).
+inline Vec3 ExternalForce(double mass, const Vec3& a_W, const Vec3& thrust_W) {
+  return mass * a_W - thrust_W + Vec3(0, 0, mass * kGravity);
+}
+
 struct DisturbanceObserverParams {
   bool enabled = false;
   double time_constant = 0.05;  // [s] of the first-order filter: 95 % of a step in 3 of them

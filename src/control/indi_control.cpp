@@ -5,6 +5,7 @@
 #include <string>
 
 #include "common/number_format.h"
+#include "control/disturbance_observer.h"
 
 namespace aerobox {
 
@@ -46,9 +47,8 @@ IndiController::IndiController(const IndiParams& params, const QuadParams& vehic
 
 ControlStatus IndiController::Update(double, const State& state, const FlatOutput& setpoint,
                                      ControlCommand* command) {
-  if (!setpoint.AllFinite() || !state.p_W.allFinite() || !state.v_W.allFinite() ||
-      !state.q_WB.coeffs().allFinite() || !state.w_B.allFinite() ||
-      !now_.acceleration_W.allFinite() || !now_.rotor_thrusts.allFinite()) {
+  if (!setpoint.AllFinite() || !state.AllFinite() || !now_.acceleration_W.allFinite() ||
+      !now_.rotor_thrusts.allFinite()) {
     return ControlStatus::NonFinite();
   }
   const Mat3 r = state.q_WB.normalized().toRotationMatrix();
@@ -61,7 +61,7 @@ ControlStatus IndiController::Update(double, const State& state, const FlatOutpu
   const Vec3 w_f = rates_.Update(state.w_B);
   const Vec3 w_dot_f = last_rates_ ? Vec3((w_f - *last_rates_) / period_) : Vec3::Zero();
   last_rates_ = w_f;
-  external_W_ = mass_ * (a_f - thrust_f + Vec3(0, 0, kGravity));
+  external_W_ = ExternalForce(mass_, a_f, mass_ * thrust_f);
 
   // the acceleration the trajectory asks, and the increment that gets it: what the thrust
   // gives now, plus what the vehicle lacks

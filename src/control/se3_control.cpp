@@ -92,8 +92,7 @@ Vec3 AttitudeAcceleration(const Se3Params& gains, const Mat3& r, const Vec3& w_B
 
 ControlStatus Se3Controller::Update(double t, const State& state, const FlatOutput& setpoint,
                                     ControlCommand* command) {
-  if (!setpoint.AllFinite() || !state.p_W.allFinite() || !state.v_W.allFinite() ||
-      !state.q_WB.coeffs().allFinite() || !state.w_B.allFinite()) {
+  if (!setpoint.AllFinite() || !state.AllFinite()) {
     return ControlStatus::NonFinite();
   }
   const Mat3 r = state.q_WB.normalized().toRotationMatrix();

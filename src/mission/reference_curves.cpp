@@ -3,6 +3,8 @@
 #include <cmath>
 #include <utility>
 
+#include "scene/scene_mjcf.h"
+
 namespace aerobox {
 namespace {
 
@@ -54,6 +56,17 @@ double EightDuration() { return 2.0 + 2 * kPi / EightRate(); }
 Vec3 Eight(double t) {
   const double phase = RampedPhase(t, EightRate(), 2.0, EightDuration());
   return Vec3(2.0 * std::sin(phase), std::sin(2 * phase), 1.5);
+}
+
+Simulation RoomAt(const Vec3& start, const Map& extra, const QuadParams& vehicle) {
+  Map map = extra;
+  map.name = "room";
+  map.bounds = {Vec3(-10, -10, 0), Vec3(10, 10, 6)};
+  SceneOptions options;
+  options.vehicle_position = start;
+  Simulation sim = Simulation::FromXml(BuildSceneMjcf(map, vehicle, options), "room");
+  sim.SetRotorThrusts(Vec4::Constant(vehicle.HoverThrustPerRotor()));
+  return sim;
 }
 
 }  // namespace aerobox

@@ -1,10 +1,13 @@
-// References from functions of time, and the circle and figure-8 the controller tests and the
-// wind benchmark fly.
+// References from functions of time, the circle and figure-8 the controller tests and the wind
+// benchmark fly, and the empty room they are flown in.
 #pragma once
 
 #include <functional>
 
+#include "map/map.h"
 #include "mission/flight.h"
+#include "sim/simulation.h"
+#include "vehicle/quad_params.h"
 
 namespace aerobox {
 
@@ -30,5 +33,10 @@ Vec3 Circle(double t);
 double EightRate();      // [rad/s]
 double EightDuration();  // [s]
 Vec3 Eight(double t);
+
+// An empty 20 x 20 x 6 m room (and `extra`'s boxes) with `vehicle` at rest at `start` [m], its
+// rotors at hover thrust.
+Simulation RoomAt(const Vec3& start, const Map& extra = Map(),
+                  const QuadParams& vehicle = QuadParams());
 
 }  // namespace aerobox

@@ -72,6 +72,11 @@ void FlightSetup::Validate() const {
   }
 }
 
+std::string FlightSetup::ControllerMeasures() const {
+  if (!MeasuresAcceleration(controller)) return "";
+  return sensors.Enabled() ? "imu" : "ground truth (no IMU: sensors off)";
+}
+
 bool FlightSetup::HasUnknown() const {
   return std::find(unknown.begin(), unknown.end(), true) != unknown.end();
 }

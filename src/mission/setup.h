@@ -47,6 +47,10 @@ struct FlightSetup {
   SensingParams sensing;
   ReplanParams replan;
   bool HasUnknown() const;
+  // What the controller's acceleration and rotor thrusts come from when it measures them (indi,
+  // or the observer): "imu" with sensors on, else "ground truth (no IMU: sensors off)"; ""
+  // for a controller that does not.
+  std::string ControllerMeasures() const;
   std::uint64_t seed = 1;
   PlanningSettings planning;
   std::string vehicle_kind = "tello";  // the built-in the vehicle started from ([vehicle] kind)

@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "common/number_format.h"
-#include "control/controllers.h"
 #include "planning/path_simplify.h"
 
 namespace aerobox {
@@ -96,10 +95,8 @@ JsonObject RunSummary(const FlightSetup& setup, const MissionResult& result,
       .Add("map", setup.map.source)
       .Add("vehicle", setup.vehicle_kind)
       .Add("controller", setup.controller.kind);
-  if (MeasuresAcceleration(setup.controller)) {
-    // what its acceleration and rotor thrusts come from: without sensors, the ground truth
-    summary.Add("controller_measures",
-                setup.sensors.Enabled() ? "imu" : "ground truth (no IMU: sensors off)");
+  if (const std::string measures = setup.ControllerMeasures(); !measures.empty()) {
+    summary.Add("controller_measures", measures);
   }
   AddPoint(&summary, "start_requested", plan.start.requested);
   AddPoint(&summary, "start", plan.start.used);

@@ -583,7 +583,7 @@ class BuiltinController {
     if (!(rate > 0)) throw py::value_error("rate must be positive [Hz]");
     config_.kind = kind;
     config_.rate = rate;
-    if (kind == "indi" || config_.observer.enabled) {
+    if (MeasuresAcceleration(config_)) {
       throw py::value_error(
           "builtin_controller: \"" + kind +
           "\" measures the vehicle's acceleration and rotor thrusts, which a state dict does not "

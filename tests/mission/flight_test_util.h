@@ -8,7 +8,6 @@
 
 #include "mission/flight.h"
 #include "mission/reference_curves.h"
-#include "scene/scene_mjcf.h"
 
 namespace aerobox::testing {
 
@@ -18,19 +17,6 @@ struct Track {
   std::vector<TelemetrySample> samples;
 };
 
-// An empty 20 x 20 x 6 m room with the vehicle at rest at `start` (rotors at hover thrust).
-inline Simulation RoomAt(const Vec3& start, const Map& extra = Map(),
-                         const QuadParams& vehicle = QuadParams()) {
-  Map map = extra;
-  map.name = "room";
-  map.bounds = {Vec3(-10, -10, 0), Vec3(10, 10, 6)};
-  SceneOptions options;
-  options.vehicle_position = start;
-  Simulation sim = Simulation::FromXml(BuildSceneMjcf(map, vehicle, options), "room");
-  sim.SetRotorThrusts(Vec4::Constant(vehicle.HoverThrustPerRotor()));
-  return sim;
-}
-
 // The references of mission/reference_curves.h, under the names the tests use.
 using aerobox::Circle;
 using aerobox::CircleDuration;
@@ -39,5 +25,6 @@ using aerobox::EightDuration;
 using aerobox::EightRate;
 using aerobox::FromFunction;
 using aerobox::RampedPhase;
+using aerobox::RoomAt;
 
 }  // namespace aerobox::testing
