@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "app/exit_codes.h"
+#include "app/swarm_job.h"
 #include "common/number_format.h"
 #include "mission/mission.h"
 #include "outputs/files.h"
@@ -61,9 +62,6 @@ void ValidateFlyOptions(const FlyOptions& options) {
   }
 }
 
-namespace {
-
-// Flies and writes the outputs into `output`'s staging folder; RunFly commits them.
 RenderOptions RenderOptionsFor(const FlyOptions& options) {
   RenderOptions render;
   render.width = options.width;
@@ -78,6 +76,8 @@ RenderOptions RenderOptionsFor(const FlyOptions& options) {
   render.show_tree = options.show_tree;
   return render;
 }
+
+namespace {
 
 // A run's outputs in its staging folder, each an observer of the run.
 struct FlyOutputs {
@@ -284,9 +284,11 @@ void WriteSummaryAndReport(const std::string& folder, const FlightSetup& setup,
   }
 }
 
+// Flies and writes the outputs into `output`'s staging folder; RunFly commits them.
 int FlyInto(const OutputFolder& output, const FlightSetup& setup, const FlyOptions& options,
             std::ostream& out, std::ostream& err) {
   ValidateFlyOptions(options);
+  if (!setup.vehicles.empty()) return FlySwarmInto(output, setup, options, out, err);
   FlyOutputs outputs(output.staging(), setup, options, err);
   WarnBeforeFlight(setup, err);
   FlightSetup recorded = setup;

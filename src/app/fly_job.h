@@ -4,6 +4,7 @@
 #include <ostream>
 #include <string>
 
+#include "outputs/flight_outputs.h"
 #include "scenario/scenario.h"
 
 namespace aerobox {
@@ -31,6 +32,9 @@ struct FlyOptions {
 // Throws InputError naming the option when a value cannot be used: the command checks every
 // option before it reads a file or does any work.
 void ValidateFlyOptions(const FlyOptions& options);
+
+// What the options ask of the pictures (video, overview, frames).
+RenderOptions RenderOptionsFor(const FlyOptions& options);
 
 // Runs the whole job and returns the exit code (app/exit_codes.h). Throws InputError for bad
 // input, before anything is written.

@@ -73,7 +73,7 @@ Reference ReferenceOf(const PiecewiseTrajectory& trajectory) {
 }
 
 void PlaceVehicleAtStart(const Map& map, const QuadParams& vehicle, const Vec3& requested,
-                         const Vec3& used, Simulation* sim) {
+                         const Vec3& used, VehiclePhysics* sim) {
   const Vec3 rest = VehicleRestPosition(map, vehicle, requested);
   if (rest.z() > map.bounds.min.z() + 0.5 * vehicle.collision_size.z() + 1e-9) {
     sim->SetVehicleState(State{used, Vec3::Zero(), Quat::Identity(), Vec3::Zero()});
@@ -97,168 +97,179 @@ double YawOf(const State& state) {
   return std::atan2(x_W.y(), x_W.x());
 }
 
-// One flight: the parts, composed one physics step at a time. Step() says when it has ended.
-class FlightRun {
- public:
-  FlightRun(const Reference& reference, const FlightParams& params, const FlightLoop& loop,
-            const FlightParts& parts)
-      : loop_(loop),
-        parts_(parts),
-        world_(parts.world),
-        takeoff_(*parts.takeoff),
-        goal_tolerance_(params.goal_tolerance),
-        goal_speed_(params.goal_speed),
-        divider_(StepsPerPeriod(loop.control_rate, world_->step(), "the controller's rate")),
-        setpoints_(reference, params, YawOf(world_->Truth())) {
-    result_.control_rate = loop.control_rate;
-    world_->sim().TakeNewWarnings();  // what loading and placing raised is not the flight's
-    t0_ = world_->time();
-  }
+}  // namespace
 
-  // The k-th physics step: sense, control, judge, step the physics. False when it has ended.
-  bool Step(long k) {
-    const double t = world_->time() - t0_;
-    // Ctrl-C ends the run here, between two physics steps
-    ThrowIfStopRequested([t] {
-      char at[32];
-      std::snprintf(at, sizeof(at), "%.2f", t);
-      return "flying (at t = " + std::string(at) + " s)";
-    });
-    const bool control_step = k % divider_ == 0;
-    if (control_step && k > 0) world_->EndControlPeriod();
-    const State state = world_->Truth();
-    if (!state.AllFinite()) return End(FlightStatus::kNonFinite);
-    const double tr = takeoff_.ReferenceTime(t, state);  // the reference's own time [s]
-    const State seen = world_->Seen(state);              // what the controller sees
-    if (control_step && !Control(t, tr, seen)) return false;
-    // the inner loops every step, on the command held between control steps
-    if (!world_->Command(command_, seen)) return End(FlightStatus::kNonFinite);
-    ReachGoals(t, state);
-    const double error = (state.p_W - setpoint_.p_W).norm();
-    if (control_step) Observe(t, state, error);
-    const FlightMoment now{t,
-                           tr,
-                           state,
-                           error,
-                           control_step,
-                           takeoff_,
-                           setpoints_.duration(),
-                           result_.goal_times.size()};
-    for (FlightRule* rule : parts_.rules) {
-      if (const std::optional<FlightStatus> verdict = rule->Judge(now)) return End(*verdict);
+FlightRun::FlightRun(const Reference& reference, const FlightParams& params, const FlightLoop& loop,
+                     const FlightParts& parts)
+    : loop_(loop),
+      parts_(parts),
+      world_(parts.world),
+      takeoff_(*parts.takeoff),
+      goal_tolerance_(params.goal_tolerance),
+      goal_speed_(params.goal_speed),
+      divider_(StepsPerPeriod(loop.control_rate, world_->step(), "the controller's rate")),
+      setpoints_(reference, params, YawOf(world_->Truth())) {
+  result_.control_rate = loop.control_rate;
+  world_->sim().TakeNewWarnings();  // what loading and placing raised is not the flight's
+  t0_ = world_->time();
+}
+
+bool FlightRun::Step(long k) {
+  if (!BeforePhysics(k)) return false;
+  world_->sim().Step(world_->inner().mixer.thrusts);
+  return AfterPhysics();
+}
+
+// Sense, control, judge. False when it has ended.
+bool FlightRun::BeforePhysics(long k) {
+  const double t = world_->time() - t0_;
+  // Ctrl-C ends the run here, between two physics steps
+  ThrowIfStopRequested([t] {
+    char at[32];
+    std::snprintf(at, sizeof(at), "%.2f", t);
+    return "flying (at t = " + std::string(at) + " s)";
+  });
+  const bool control_step = k % divider_ == 0;
+  if (control_step && k > 0) world_->EndControlPeriod();
+  const State state = world_->Truth();
+  if (!state.AllFinite()) return End(FlightStatus::kNonFinite);
+  const double tr = takeoff_.ReferenceTime(t, state);  // the reference's own time [s]
+  const State seen = world_->Seen(state);              // what the controller sees
+  if (control_step && !Control(t, tr, seen)) return false;
+  // the inner loops every step, on the command held between control steps
+  if (!world_->Command(command_, seen)) return End(FlightStatus::kNonFinite);
+  ReachGoals(t, state);
+  const double error = (state.p_W - setpoint_.p_W).norm();
+  if (control_step) Observe(t, state, error);
+  const FlightMoment now{t,
+                         tr,
+                         state,
+                         error,
+                         control_step,
+                         takeoff_,
+                         setpoints_.duration(),
+                         result_.goal_times.size()};
+  for (FlightRule* rule : parts_.rules) {
+    if (const std::optional<FlightStatus> verdict = rule->Judge(now)) return End(*verdict);
+  }
+  before_ = state;
+  world_->BeforePhysics(state);
+  return true;
+}
+
+FlightResult FlightRun::Finish() {
+  result_.time = world_->time() - t0_;
+  result_.takeoff_time = takeoff_.time();
+  for (const FlightObserver* observer : parts_.observers) observer->Finish(&result_);
+  world_->ClearAir();
+  return result_;
+}
+
+bool FlightRun::End(FlightStatus status) {
+  result_.status = status;
+  return false;
+}
+
+// At the controller's rate: a replaced reference (replanning), the setpoint, the command.
+bool FlightRun::Control(double t, double tr, const State& seen) {
+  if (loop_.update_reference && !takeoff_.lifting()) {
+    if (std::optional<Reference> next = loop_.update_reference(
+            t, tr, seen, static_cast<int>(result_.goal_times.size()), setpoints_.current())) {
+      setpoints_.Replace(*next);
+      ++result_.replans;
     }
-    return Physics(state);
   }
-
-  FlightResult Finish() {
-    result_.time = world_->time() - t0_;
-    result_.takeoff_time = takeoff_.time();
-    for (const FlightObserver* observer : parts_.observers) observer->Finish(&result_);
-    world_->ClearAir();
-    return std::move(result_);
+  setpoint_ = setpoints_.At(t, tr);
+  takeoff_.Hold(setpoints_.waiting());
+  if (t >= loop_.nonfinite_setpoint_from) {
+    setpoint_.p_W.x() = std::numeric_limits<double>::quiet_NaN();
   }
+  loop_.controller->Sense(world_->Now());
+  ControlStatus control = loop_.controller->Update(t, seen, setpoint_, &command_);
+  if (control.ok()) return true;
+  result_.message = std::move(control.message);
+  result_.detail = std::move(control.detail);
+  return End(control.code == ControlStatus::Code::kFailed ? FlightStatus::kControllerFailed
+                                                          : FlightStatus::kNonFinite);
+}
 
- private:
-  bool End(FlightStatus status) {
-    result_.status = status;
-    return false;
+// A mission's goals, in order.
+void FlightRun::ReachGoals(double t, const State& state) {
+  if (result_.goal_times.size() >= loop_.goals.size()) return;
+  const Vec3& next = loop_.goals[result_.goal_times.size()];
+  if ((state.p_W - next).norm() < goal_tolerance_ &&
+      (!loop_.stop_at_goals || state.v_W.norm() < goal_speed_)) {
+    result_.goal_times.push_back(t);
   }
+}
 
-  // At the controller's rate: a replaced reference (replanning), the setpoint, the command.
-  bool Control(double t, double tr, const State& seen) {
-    if (loop_.update_reference && !takeoff_.lifting()) {
-      if (std::optional<Reference> next = loop_.update_reference(
-              t, tr, seen, static_cast<int>(result_.goal_times.size()), setpoints_.current())) {
-        setpoints_.Replace(*next);
-        ++result_.replans;
-      }
-    }
-    setpoint_ = setpoints_.At(t, tr);
-    takeoff_.Hold(setpoints_.waiting());
-    if (t >= loop_.nonfinite_setpoint_from) {
-      setpoint_.p_W.x() = std::numeric_limits<double>::quiet_NaN();
-    }
+// At the controller's rate: the telemetry row, to every observer.
+void FlightRun::Observe(double t, const State& state, double error) {
+  const double c =
+      loop_.clearance ? loop_.clearance(state.p_W) : std::numeric_limits<double>::infinity();
+  const SensorSuite* sensing = world_->sensing();
+  loop_.controller->Report(&report_);
+  const TelemetrySample sample{
+      t,
+      state,
+      setpoint_,
+      command_,
+      world_->inner(),
+      world_->sim().RotorThrusts(),
+      error,
+      c,
+      report_,
+      static_cast<int>(result_.goal_times.size()),
+      result_.replans,
+      loop_.map_size ? loop_.map_size() : OccupancySize{},
+      world_->air().wind(),
+      world_->air().wrench().force_W,
+      sensing ? std::optional<EstimateSample>(sensing->Sample(state)) : std::nullopt};
+  for (FlightObserver* observer : parts_.observers) {
+    observer->ControlStep(sample, !takeoff_.lifting());
+  }
+}
+
+// After the physics step, in the air: what MuJoCo says of it (a warning, a contact).
+bool FlightRun::AfterPhysics() {
+  const State after = world_->AfterPhysics(before_);
+  const PhysicsStepSample step{before_, after, world_->inner().mixer.thrusts, world_->air().wind(),
+                               world_->step()};
+  for (FlightObserver* observer : parts_.observers) observer->PhysicsStep(step);
+  ++result_.steps;
+  // a warning means MuJoCo changed or distrusts the state (it resets the data after a bad
+  // acceleration): nothing after it can be trusted
+  VehiclePhysics& sim = world_->sim();
+  result_.message = sim.TakeNewWarnings();
+  if (!result_.message.empty()) return End(FlightStatus::kSimulationWarning);
+  const std::vector<VehicleContact> contacts = sim.VehicleContacts();
+  if (const std::optional<std::string> hit = Collision(contacts, takeoff_.airborne())) {
+    result_.obstacle = *hit;
+    return End(FlightStatus::kCollision);
+  }
+  takeoff_.AfterStep(!contacts.empty());
+  return true;
+}
+
+void FlightRun::HoldBeforePhysics(long k) {
+  const double t = world_->time() - t0_;
+  const bool control_step = k % divider_ == 0;
+  if (control_step) world_->EndControlPeriod();
+  const State state = world_->Truth();
+  const State seen = world_->Seen(state);
+  if (control_step) {
+    setpoint_ = setpoints_.At(t, takeoff_.ReferenceTime(t, state));
     loop_.controller->Sense(world_->Now());
-    ControlStatus control = loop_.controller->Update(t, seen, setpoint_, &command_);
-    if (control.ok()) return true;
-    result_.message = std::move(control.message);
-    result_.detail = std::move(control.detail);
-    return End(control.code == ControlStatus::Code::kFailed ? FlightStatus::kControllerFailed
-                                                            : FlightStatus::kNonFinite);
+    loop_.controller->Update(t, seen, setpoint_, &command_);
   }
+  world_->Command(command_, seen);
+  before_ = state;
+  world_->BeforePhysics(state);
+}
 
-  // A mission's goals, in order.
-  void ReachGoals(double t, const State& state) {
-    if (result_.goal_times.size() >= loop_.goals.size()) return;
-    const Vec3& next = loop_.goals[result_.goal_times.size()];
-    if ((state.p_W - next).norm() < goal_tolerance_ &&
-        (!loop_.stop_at_goals || state.v_W.norm() < goal_speed_)) {
-      result_.goal_times.push_back(t);
-    }
-  }
+void FlightRun::HoldAfterPhysics() { world_->AfterPhysics(before_); }
 
-  // At the controller's rate: the telemetry row, to every observer.
-  void Observe(double t, const State& state, double error) {
-    const double c =
-        loop_.clearance ? loop_.clearance(state.p_W) : std::numeric_limits<double>::infinity();
-    const SensorSuite* sensing = world_->sensing();
-    loop_.controller->Report(&report_);
-    const TelemetrySample sample{
-        t,
-        state,
-        setpoint_,
-        command_,
-        world_->inner(),
-        world_->sim().RotorThrusts(),
-        error,
-        c,
-        report_,
-        static_cast<int>(result_.goal_times.size()),
-        result_.replans,
-        loop_.map_size ? loop_.map_size() : OccupancySize{},
-        world_->air().wind(),
-        world_->air().wrench().force_W,
-        sensing ? std::optional<EstimateSample>(sensing->Sample(state)) : std::nullopt};
-    for (FlightObserver* observer : parts_.observers) {
-      observer->ControlStep(sample, !takeoff_.lifting());
-    }
-  }
-
-  // The physics step, in the air; then what MuJoCo says of it (a warning, a contact).
-  bool Physics(const State& state) {
-    const State after = world_->Step(state);
-    const PhysicsStepSample step{state, after, world_->inner().mixer.thrusts, world_->air().wind(),
-                                 world_->step()};
-    for (FlightObserver* observer : parts_.observers) observer->PhysicsStep(step);
-    ++result_.steps;
-    // a warning means MuJoCo changed or distrusts the state (it resets the data after a bad
-    // acceleration): nothing after it can be trusted
-    VehiclePhysics& sim = world_->sim();
-    result_.message = sim.TakeNewWarnings();
-    if (!result_.message.empty()) return End(FlightStatus::kSimulationWarning);
-    const std::vector<VehicleContact> contacts = sim.VehicleContacts();
-    if (const std::optional<std::string> hit = Collision(contacts, takeoff_.airborne())) {
-      result_.obstacle = *hit;
-      return End(FlightStatus::kCollision);
-    }
-    takeoff_.AfterStep(!contacts.empty());
-    return true;
-  }
-
-  const FlightLoop& loop_;
-  const FlightParts& parts_;
-  VehicleWorld* world_;
-  Takeoff& takeoff_;
-  double goal_tolerance_;  // [m] a mission's goals ...
-  double goal_speed_;      // [m/s]
-  int divider_;            // physics steps per control step
-  Setpoints setpoints_;
-  FlatOutput setpoint_;
-  ControlCommand command_;
-  std::vector<double> report_;
-  FlightResult result_;
-  double t0_ = 0.0;  // [s] the world's time when the flight began
-};
+namespace {
 
 void CheckFlight(const FlightParams& params, const FlightLoop& loop) {
   params.Validate();

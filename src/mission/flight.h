@@ -128,7 +128,7 @@ Reference ReferenceOf(const PiecewiseTrajectory& trajectory);
 // The scene puts the vehicle at rest at the requested start (on the floor when the start is at
 // floor level). A start in the air becomes the trajectory's first point `used`, hovering.
 void PlaceVehicleAtStart(const Map& map, const QuadParams& vehicle, const Vec3& requested,
-                         const Vec3& used, Simulation* sim);
+                         const Vec3& used, VehiclePhysics* sim);
 
 // When a flight is complete (FlightStatus::kReachedGoal): the vehicle rests at a point within
 // a tolerance, below a speed (the goal's, FlightParams, at the reference's end).

@@ -178,12 +178,23 @@ VehicleWorld::VehicleWorld(const FlightLoop& loop, VehiclePhysics* sim)
   if (loop.sensors.Enabled()) sensing_.emplace(loop.sensors, loop.seed, step_, 0.0, Truth());
 }
 
-State VehicleWorld::Step(const State& truth) {
+void VehicleWorld::BeforePhysics(const State& truth) {
   air_.BeforeStep(time(), step_, truth, sim_);
-  sim_->Step(inner_out_.mixer.thrusts);
+  if (interacting_) {
+    const Wrench& air = air_.wrench();
+    sim_->SetExternalWrench(air.force_W + interaction_W_, air.torque_W);
+  }
+}
+
+State VehicleWorld::AfterPhysics(const State& truth) {
   const State after = Truth();
   if (sensing_) sensing_->AfterStep(time(), truth, after, sim_->LinearAcceleration_W());
   return after;
+}
+
+void VehicleWorld::SetInteractionForce(const Vec3& force_W) {
+  interaction_W_ = force_W;
+  interacting_ = true;
 }
 
 FlightMetrics::FlightMetrics(const QuadParams& vehicle)

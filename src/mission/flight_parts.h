@@ -165,8 +165,20 @@ class VehicleWorld {
     return inner_.Run(command, seen, step_, &inner_out_);
   }
   // The physics step from `truth` with the rotors' last commands, in the air; the sensors after
-  // it. Returns the state after the step.
-  State Step(const State& truth);
+  // it. Returns the state after the step. In a world of several vehicles the step is split:
+  // each vehicle's BeforePhysics and commands, one step of the world, each one's AfterPhysics.
+  State Step(const State& truth) {
+    BeforePhysics(truth);
+    sim_->Step(inner_out_.mixer.thrusts);
+    return AfterPhysics(truth);
+  }
+  // The air's wrench (and another vehicle's push) on the vehicle for the step from `truth`.
+  void BeforePhysics(const State& truth);
+  // The sensors after the step from `truth`; the state after it.
+  State AfterPhysics(const State& truth);
+  // A force [N, world] from the other vehicles (their downwash), added to the air's from the next
+  // step on until set again.
+  void SetInteractionForce(const Vec3& force_W);
   // At the end of each control period, before the controller's next update: the rotors' noise
   // (MotorNoise), as RotorPy adds it after each of its simulation steps.
   void EndControlPeriod() { motor_noise_.Apply(sim_); }
@@ -187,6 +199,8 @@ class VehicleWorld {
   MotorNoise motor_noise_;
   std::optional<SensorSuite> sensing_;
   InnerOutput inner_out_;
+  Vec3 interaction_W_ = Vec3::Zero();  // [N]
+  bool interacting_ = false;           // a force was set (it may be zero now)
 };
 
 // What an observer sees of one physics step: the state before and after it, the rotor
@@ -351,6 +365,57 @@ class StandardParts {
   TimeLimitRule time_limit_;
   FlightMetrics metrics_;
   std::optional<TelemetryCallback> telemetry_;
+};
+
+// One flight: the parts, composed one physics step at a time (FlyTrajectory runs one; a world
+// of several vehicles runs one per vehicle, stepping the world once between their halves).
+class FlightRun {
+ public:
+  FlightRun(const Reference& reference, const FlightParams& params, const FlightLoop& loop,
+            const FlightParts& parts);
+  FlightRun(const FlightRun&) = delete;
+  FlightRun& operator=(const FlightRun&) = delete;
+
+  // The k-th physics step: BeforePhysics, the vehicle's physics step, AfterPhysics. False when
+  // the flight has ended.
+  bool Step(long k);
+  // Sense, control, judge; the inner loops' rotor commands (world().inner()) and the air for the
+  // physics step. False when the flight has ended (then nothing is set for the step).
+  bool BeforePhysics(long k);
+  // After the physics step: the sensors, the observers, MuJoCo's warnings and the contacts.
+  // False when the flight has ended.
+  bool AfterPhysics();
+  // The result, once the flight has ended (called once).
+  FlightResult Finish();
+
+  // After it reached its goal, the vehicle may hold the reference's end in a world that others
+  // still fly in: the controller and the inner loops go on, nothing judges or observes.
+  void HoldBeforePhysics(long k);
+  void HoldAfterPhysics();
+
+  FlightStatus status() const { return result_.status; }
+  VehicleWorld& world() const { return *world_; }
+
+ private:
+  bool End(FlightStatus status);
+  bool Control(double t, double tr, const State& seen);
+  void ReachGoals(double t, const State& state);
+  void Observe(double t, const State& state, double error);
+
+  const FlightLoop& loop_;
+  const FlightParts& parts_;
+  VehicleWorld* world_;
+  Takeoff& takeoff_;
+  double goal_tolerance_;  // [m] a mission's goals ...
+  double goal_speed_;      // [m/s]
+  int divider_;            // physics steps per control step
+  Setpoints setpoints_;
+  FlatOutput setpoint_;
+  ControlCommand command_;
+  std::vector<double> report_;
+  FlightResult result_;
+  double t0_ = 0.0;  // [s] the world's time when the flight began
+  State before_;     // the state the physics step starts from
 };
 
 // Flies `reference` with `loop`'s controller and goals through `parts`: the closed loop itself,

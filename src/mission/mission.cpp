@@ -82,23 +82,6 @@ PlanOutcome PlanWhileSceneLoads(const FlightSetup& setup, std::future<void>* sce
   return plan;
 }
 
-// The closed loop's parts from the set-up: the vehicle, the controller at its rate, the
-// clearance, the air and the sensors, a mission's goals.
-FlightLoop LoopFor(const FlightSetup& setup, const PlanOutcome& plan, Controller* controller,
-                   const CollisionWorld& world) {
-  FlightLoop loop;
-  loop.vehicle = &setup.vehicle;
-  loop.controller = controller;
-  loop.control_rate = setup.controller.rate;
-  loop.nonfinite_setpoint_from = setup.faults.nonfinite_setpoint_from;
-  loop.inner = setup.controller.inner;
-  loop.clearance = [&world](const Vec3& p) { return world.Clearance(p); };
-  AddAirAndSensors(setup, &loop);
-  for (const Endpoint& goal : plan.via) loop.goals.push_back(goal.used);
-  loop.stop_at_goals = setup.stop_at_goals;
-  return loop;
-}
-
 // Boxes found in flight: the replanner that senses them and replans around them, through the
 // flight's planner (a given path cannot be replanned by itself: RRT* then).
 void AddReplanner(const FlightSetup& setup, const PlanOutcome& plan,
@@ -140,6 +123,21 @@ void TakeDiscovery(const Replanner& replanner, MissionResult* result) {
 }
 
 }  // namespace
+
+FlightLoop LoopFor(const FlightSetup& setup, const PlanOutcome& plan, Controller* controller,
+                   const CollisionWorld& world) {
+  FlightLoop loop;
+  loop.vehicle = &setup.vehicle;
+  loop.controller = controller;
+  loop.control_rate = setup.controller.rate;
+  loop.nonfinite_setpoint_from = setup.faults.nonfinite_setpoint_from;
+  loop.inner = setup.controller.inner;
+  loop.clearance = [&world](const Vec3& p) { return world.Clearance(p); };
+  AddAirAndSensors(setup, &loop);
+  for (const Endpoint& goal : plan.via) loop.goals.push_back(goal.used);
+  loop.stop_at_goals = setup.stop_at_goals;
+  return loop;
+}
 
 MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
   setup.Validate();

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "control/controller.h"
+#include "geometry/collision_world.h"
 #include "mission/flight.h"
 #include "mission/plan.h"
 #include "mission/setup.h"
@@ -88,6 +89,11 @@ struct MissionParts {
 // (a 5000-tree forest costs MuJoCo as much as the city).
 inline constexpr double kCityRouteMargin = 25.0;
 inline constexpr size_t kCullAboveBoxes = 500;
+
+// The closed loop's parts from the set-up: the vehicle, the controller at its rate, the
+// clearance (`world` must outlive the loop), the air and the sensors, a mission's goals.
+FlightLoop LoopFor(const FlightSetup& setup, const PlanOutcome& plan, Controller* controller,
+                   const CollisionWorld& world);
 
 // Plans, solves, loads the scene, places the vehicle and flies. Throws InputError for unusable
 // endpoints and std::invalid_argument for bad settings; a missing path, trajectory or a failed

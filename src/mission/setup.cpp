@@ -34,6 +34,24 @@ CollisionParams FlightSetup::TrajectoryCollision() const {
   return CollisionParams{vehicle.collision_size, planning.trajectory_clearance};
 }
 
+FlightSetup FlightSetup::Member(size_t i) const {
+  const SwarmMember& m = vehicles.at(i);
+  FlightSetup one = *this;
+  one.vehicles.clear();
+  one.name = m.name;
+  one.vehicle_kind = m.vehicle_kind;
+  one.vehicle = m.vehicle;
+  one.controller = m.controller;
+  one.start = m.start;
+  one.start_origin = "scenario";
+  one.start_where = m.where;
+  one.goal = m.goal;
+  one.goal_origin = "scenario";
+  one.goal_where = m.where;
+  one.via.clear();
+  return one;
+}
+
 void FlightSetup::Validate() const {
   vehicle.Validate();
   controller.Validate();
@@ -70,6 +88,15 @@ void FlightSetup::Validate() const {
   if (planning.trajectory_method == "given" && planning.given_trajectory.size() < 2) {
     throw std::invalid_argument("trajectory method \"given\" needs a [trajectory] file");
   }
+  swarm.Validate();
+  for (size_t i = 0; i < vehicles.size(); ++i) {
+    for (size_t j = 0; j < i; ++j) {
+      if (vehicles[j].name == vehicles[i].name) {
+        throw std::invalid_argument("vehicles: two are called \"" + vehicles[i].name + "\"");
+      }
+    }
+    Member(i).Validate();
+  }
 }
 
 std::string FlightSetup::ControllerMeasures() const {
@@ -93,6 +120,17 @@ std::string SceneMjcfFor(const FlightSetup& setup, const std::vector<bool>& keep
   const QuadParams& vehicle = setup.vehicle;
   SceneOptions options;
   options.keep_boxes = keep_boxes;
+  if (!setup.vehicles.empty()) {
+    // several vehicles: each at its start in its own colour, the chase camera on the first
+    std::vector<SceneVehicle> vehicles;
+    for (size_t i = 0; i < setup.vehicles.size(); ++i) {
+      const SwarmMember& m = setup.vehicles[i];
+      vehicles.push_back({m.name, m.vehicle, VehicleRestPosition(setup.map, m.vehicle, m.start),
+                          SwarmRgba(static_cast<int>(i))});
+    }
+    options.heading_target = setup.vehicles.front().goal;
+    return BuildSceneMjcf(setup.map, vehicles, options);
+  }
   options.vehicle_position = VehicleRestPosition(setup.map, vehicle, setup.start);
   options.heading_target = setup.goal;
   return BuildSceneMjcf(setup.map, vehicle, options);

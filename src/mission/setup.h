@@ -15,6 +15,7 @@
 #include "mission/flight.h"
 #include "mission/planning_settings.h"
 #include "mission/replanning.h"
+#include "mission/swarm.h"
 #include "vehicle/quad_params.h"
 
 namespace aerobox {
@@ -22,6 +23,18 @@ namespace aerobox {
 // FlightSetup::start_origin when neither the user nor the map gave a start and no free spot
 // was found for one: a scene can still be made; planning refuses.
 inline constexpr const char* kNoStart = "none";
+
+// One vehicle of several in one world (a scenario's [[vehicles]]): its own name, vehicle,
+// controller, start and goal; the map, the air, the planning and flight settings are shared.
+struct SwarmMember {
+  std::string name;                    // unique; its folder of outputs, its elements' prefix
+  std::string vehicle_kind = "tello";  // the built-in its vehicle is
+  QuadParams vehicle;
+  ControllerConfig controller;
+  Vec3 start = Vec3::Zero();  // [m]
+  Vec3 goal = Vec3::Zero();   // [m]
+  SourceLocation where;       // its table, for messages
+};
 
 // A map ready to fly with everything a scenario sets: where start and goal came from is kept
 // for messages and summaries. One QuadParams feeds the scene, the collision worlds and the
@@ -60,6 +73,12 @@ struct FlightSetup {
   WindParams wind;                     // [wind]
   AeroParams aero;                     // [aero]
   SensorParams sensors;                // [sensors]
+  // Several vehicles in one world ([[vehicles]]; empty: the set-up's own vehicle alone) and how
+  // they keep apart ([swarm]).
+  std::vector<SwarmMember> vehicles;
+  SwarmParams swarm;
+  // The set-up of `vehicles[i]` as if it flew alone: its vehicle, controller, start and goal.
+  FlightSetup Member(size_t i) const;
   // Faults the fault tests inject: the command reads them (AEROBOX_FAULT,
   // common/fault_injection.h); the domain only obeys them.
   struct Faults {
@@ -77,7 +96,8 @@ struct FlightSetup {
 // Gives a flight loop the set-up's air and sensors: wind, drag, sensors, seed and floor.
 void AddAirAndSensors(const FlightSetup& setup, FlightLoop* loop);
 
-// The MJCF scene of a set-up: the vehicle rests at the start, the chase camera faces the goal.
+// The MJCF scene of a set-up: the vehicle rests at the start, the chase camera faces the goal;
+// several vehicles ([[vehicles]]) each rest at their own start in their own colour.
 // `keep_boxes`: see SceneOptions (empty: every box of the map).
 std::string SceneMjcfFor(const FlightSetup& setup, const std::vector<bool>& keep_boxes = {});
 

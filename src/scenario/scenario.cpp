@@ -504,6 +504,8 @@ const std::pair<const char*, SectionReader> kSections[] = {
      }},
     {"replan", [](const toml::table& t, const SourceLocation& at,
                   Scenario* s) { ReadFields(t, at.file, "replan.", &s->replan); }},
+    {"swarm", [](const toml::table& t, const SourceLocation& at,
+                 Scenario* s) { ReadFields(t, at.file, "swarm.", &s->swarm); }},
     {"render",
      [](const toml::table& t, const SourceLocation& at, Scenario*) {
        for (const auto& [key, node] : t) {
@@ -525,6 +527,114 @@ std::string RelativeFile(const toml::node& node, const std::string& file, const 
   const std::optional<std::string> value = node.value<std::string>();
   if (!value || value->empty()) throw InputError({file, LineOf(node)}, key, "expected a file name");
   return (fs::path(file).parent_path() / *value).lexically_normal().string();
+}
+
+}  // namespace
+
+void VehicleEntry::Describe(Archive& a) {
+  a.Text({"name", "", "its name, unique: its outputs' folder and its name in messages (required)"},
+         &name);
+  a.Text({"kind", "", "\"tello\" or \"crazyflie\" (empty: [vehicle], with its changes)"}, &kind);
+  a.Text({"controller", "", "its controller's kind (empty: [controller]'s)"}, &controller);
+  a.Number({"rate", "Hz", "its controller's rate (0: [controller]'s)"}, &rate, 0, 1000);
+  a.Vector({"start", "m", "where it starts, [x, y, z] (required)"}, &start, -1e6, 1e6);
+  a.Vector({"goal", "m", "where it ends, [x, y, z] (required)"}, &goal, -1e6, 1e6);
+}
+
+namespace {
+
+// [[vehicles]]: an array of tables, each read through VehicleEntry's Describe.
+void ReadVehicleEntries(const toml::node& node, const std::string& file, Scenario* s) {
+  const toml::array* tables = node.as_array();
+  if (tables == nullptr || tables->empty()) {
+    throw InputError({file, LineOf(node)}, "vehicles",
+                     "expected [[vehicles]] tables, one per vehicle");
+  }
+  for (const toml::node& item : *tables) {
+    const toml::table* table = item.as_table();
+    if (table == nullptr) {
+      throw InputError({file, LineOf(item)}, "vehicles", "expected a [[vehicles]] table");
+    }
+    VehicleEntry entry;
+    entry.line = LineOf(item);
+    ReadFields(*table, file, "vehicles.", &entry);
+    for (const char* key : {"name", "start", "goal"}) {
+      if (table->get(key) == nullptr) {
+        throw InputError({file, entry.line}, std::string("vehicles.") + key,
+                         "missing key: every [[vehicles]] table needs name, start and goal");
+      }
+    }
+    entry.name = FolderName(*table->get("name"), file, "vehicles.name");
+    s->vehicle_entries.push_back(entry);
+  }
+}
+
+// A [[vehicles]] entry as a vehicle of the swarm: the scenario's vehicle and controller with
+// the entry's kind, controller and rate.
+SwarmMember MemberOf(const VehicleEntry& entry, const Scenario& scenario, const std::string& file) {
+  const SourceLocation at{file, entry.line};
+  const std::string key = "vehicles." + entry.name + ".";
+  SwarmMember m;
+  m.name = entry.name;
+  m.start = entry.start;
+  m.goal = entry.goal;
+  m.where = at;
+  m.vehicle_kind = scenario.vehicle_kind;
+  m.vehicle = scenario.vehicle;
+  if (!entry.kind.empty()) {
+    const std::optional<QuadParams> builtin = BuiltinVehicle(entry.kind);
+    if (!builtin) {
+      throw InputError(at, key + "kind",
+                       "expected \"tello\" or \"crazyflie\", got \"" + entry.kind + "\"");
+    }
+    m.vehicle_kind = entry.kind;
+    m.vehicle = *builtin;
+  }
+  m.controller = scenario.controller;
+  if (!entry.controller.empty()) {
+    if (Controllers().Find(entry.controller) == nullptr) {
+      throw InputError(
+          at, key + "controller",
+          "expected " + Controllers().NameList() + ", got \"" + entry.controller + "\"");
+    }
+    m.controller.kind = entry.controller;
+    m.controller.params = Controllers().Parameters(entry.controller);
+  }
+  if (entry.rate > 0) {
+    const double steps = 1000.0 / entry.rate;
+    if (std::abs(steps - std::round(steps)) > 1e-9) {
+      throw InputError(at, key + "rate",
+                       "must divide the 1000 Hz physics rate (e.g. 1000, 500, 250, 200, 100)");
+    }
+    m.controller.rate = entry.rate;
+  }
+  return m;
+}
+
+// The entries as vehicles, each name once; the first's start and goal stand for the scenario's
+// when it gives none (the scene's camera, `aerobox check`).
+void ResolveVehicles(const std::string& file, Scenario* scenario) {
+  for (size_t i = 0; i < scenario->vehicle_entries.size(); ++i) {
+    const VehicleEntry& entry = scenario->vehicle_entries[i];
+    for (size_t j = 0; j < i; ++j) {
+      if (scenario->vehicle_entries[j].name == entry.name) {
+        throw InputError({file, entry.line}, "vehicles.name",
+                         "\"" + entry.name + "\" is already the name of the vehicle on line " +
+                             std::to_string(scenario->vehicle_entries[j].line));
+      }
+    }
+    scenario->vehicles.push_back(MemberOf(entry, *scenario, file));
+  }
+  if (scenario->vehicles.empty()) return;
+  const VehicleEntry& first = scenario->vehicle_entries.front();
+  if (!scenario->start) {
+    scenario->start = first.start;
+    scenario->start_line = first.line;
+  }
+  if (!scenario->goal) {
+    scenario->goal = first.goal;
+    scenario->goal_line = first.line;
+  }
 }
 
 void ReadGoals(const toml::node& node, const std::string& file, Scenario* s) {
@@ -629,13 +739,16 @@ const TopLevelKey kTopLevel[] = {
      }},
     {"seed", "", "1", "an integer from 0", "the random seed of planning, wind and sensors",
      [](const toml::node& n, const std::string& f, Scenario* s) { ReadSeed(n, f, s); }},
+    {"vehicles", "", "[]", "[[vehicles]] tables",
+     "several vehicles in one world, one table each (below); [swarm] keeps them apart",
+     [](const toml::node& n, const std::string& f, Scenario* s) { ReadVehicleEntries(n, f, s); }},
 };
 
 // "unknown key (expected name, map, ..., [planner], ...)" and the key it looks like.
 std::string UnknownTopLevelKey(const std::string& name) {
   std::vector<std::string> keys, shown;
   for (const TopLevelKey& key : kTopLevel) keys.push_back(key.name);
-  shown = keys;
+  for (const std::string& key : keys) shown.push_back(key == "vehicles" ? "[[vehicles]]" : key);
   for (const auto& section : kSections) {
     keys.push_back(section.first);
     shown.push_back("[" + std::string(section.first) + "]");
@@ -672,6 +785,7 @@ Scenario ScenarioFromTable(const toml::table& table, const std::string& file) {
     throw InputError({file, LineOf(*table.get("goal"))}, "goal", "give goal or goals, not both");
   }
   for (const auto& [key, node] : table) ReadTopLevel(std::string(key.str()), node, file, &scenario);
+  ResolveVehicles(file, &scenario);
   // a missing key belongs to the top-level table, which starts at line 1
   if (scenario.map_path.empty()) throw InputError({file, 1}, "map", "missing key 'map'");
   // a speed cap within the vehicle's own top speed (the schema's range is the fastest
@@ -748,6 +862,8 @@ void ApplyScenarioTables(const std::optional<Scenario>& scenario, FlightSetup* s
     setup->hold = scenario->hold;
     setup->sensing = scenario->sensing;
     setup->replan = scenario->replan;
+    setup->vehicles = scenario->vehicles;
+    setup->swarm = scenario->swarm;
   }
   // wind moves the vehicle through drag only: it comes with drag unless [aero] says otherwise
   if (setup->wind.Enabled() && !(scenario && scenario->aero_given)) {
@@ -756,6 +872,7 @@ void ApplyScenarioTables(const std::optional<Scenario>& scenario, FlightSetup* s
   // a controller in drag knows its own: it feeds it forward unless [controller] says not to
   if (!(scenario && scenario->drag_feedforward_given)) {
     setup->controller.drag_feedforward = setup->aero.Enabled();
+    for (SwarmMember& m : setup->vehicles) m.controller.drag_feedforward = setup->aero.Enabled();
   }
 }
 
@@ -869,6 +986,35 @@ void DefaultStartOf(const std::string& map_path, FlightSetup* setup) {
   }
 }
 
+// Every vehicle of several starts and ends inside the map, and no two start inside each other.
+void CheckVehicles(const FlightSetup& setup) {
+  const auto& vehicles = setup.vehicles;
+  for (size_t i = 0; i < vehicles.size(); ++i) {
+    const SwarmMember& m = vehicles[i];
+    for (const auto& [point, key] : {std::pair{m.start, "start"}, std::pair{m.goal, "goal"}}) {
+      if (!setup.map.bounds.Contains(point)) {
+        throw InputError(m.where, "vehicles." + m.name + "." + key,
+                         "(" + FormatVector(point, ", ") + ") m is outside the map's bounds (" +
+                             FormatVector(setup.map.bounds.min, ", ") + ") .. (" +
+                             FormatVector(setup.map.bounds.max, ", ") + ") m");
+      }
+    }
+    const Vec3 rest = VehicleRestPosition(setup.map, m.vehicle, m.start);
+    for (size_t j = 0; j < i; ++j) {
+      const SwarmMember& other = vehicles[j];
+      const double apart =
+          (rest - VehicleRestPosition(setup.map, other.vehicle, other.start)).norm();
+      const double least = VehicleRadius(m.vehicle) + VehicleRadius(other.vehicle);
+      if (apart < least) {
+        throw InputError(m.where, "vehicles." + m.name + ".start",
+                         "starts " + FormatNumber(std::round(apart * 1000) / 1000) + " m from " +
+                             other.name + ", inside it (their radii add up to " +
+                             FormatNumber(std::round(least * 1000) / 1000) + " m)");
+      }
+    }
+  }
+}
+
 FlightSetup SetupFrom(const std::string& path, std::optional<Scenario> scenario,
                       const SetupOverrides& overrides) {
   FlightSetup setup;
@@ -898,6 +1044,7 @@ FlightSetup SetupFrom(const std::string& path, std::optional<Scenario> scenario,
   } else {
     DefaultStartOf(scenario ? scenario->map_path : path, &setup);
   }
+  CheckVehicles(setup);
   return setup;
 }
 
@@ -990,6 +1137,12 @@ std::vector<KeyTable> BuiltInKeyTables() {
       {"sensing", "the sensor that reveals unknown boxes in flight",
        KeyRows<SensingParams>("sensing")},
       {"replan", "replanning around boxes revealed in flight", KeyRows<ReplanParams>("replan")},
+      {"[vehicles]",
+       "one vehicle of several in one world, a table each in [[vehicles]] tables; the rest of "
+       "the scenario is shared",
+       KeyRows<VehicleEntry>("vehicles")},
+      {"swarm", "how several vehicles keep apart, and their downwash",
+       KeyRows<SwarmParams>("swarm")},
   };
   tables.insert(tables.end(), others.begin(), others.end());
   return tables;

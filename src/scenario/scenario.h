@@ -40,6 +40,23 @@ namespace aerobox {
 //   unknown = [3, 7] | unknown_fraction = 0.3 | unknown_map = "more.txt"
 //   [sensing] [replan]                   # optional: the range sensor, replanning
 //   [render]                             # optional table (no keys defined yet)
+//   [[vehicles]]                         # several vehicles in one world: name, start, goal,
+//                                        #   kind, controller, rate (VehicleEntry)
+//   [swarm]                              # how they keep apart: planning, separation, downwash
+
+// One [[vehicles]] table: a vehicle of several in one world. Its kind and controller default to
+// the scenario's [vehicle] and [controller].
+struct VehicleEntry {
+  std::string name;
+  std::string kind;        // "": the scenario's [vehicle] (with its overrides)
+  std::string controller;  // "": the scenario's [controller] kind
+  double rate = 0.0;       // [Hz] 0: the scenario's [controller] rate
+  Vec3 start = Vec3::Zero();
+  Vec3 goal = Vec3::Zero();
+  int line = 0;  // where its table starts
+  void Describe(Archive& a);
+};
+
 struct Scenario {
   std::string name;
   std::string file;      // the scenario file, for messages
@@ -74,6 +91,9 @@ struct Scenario {
   AeroParams aero;          // [aero]
   bool aero_given = false;  // [aero] was there (else wind brings drag)
   SensorParams sensors;     // [sensors]
+  std::vector<VehicleEntry> vehicle_entries;  // [[vehicles]] as given
+  std::vector<SwarmMember> vehicles;  // ... each with its vehicle and controller (then read)
+  SwarmParams swarm;                  // [swarm]
 };
 
 // A trajectory in the form aerobox's trajectory.csv has (header t,x,y,z,vx,vy,vz,ax,ay,az, one

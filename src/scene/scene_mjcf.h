@@ -47,6 +47,24 @@ Vec3 VehicleRestPosition(const Map& map, const QuadParams& params, const Vec3& s
 // actuators and sensors. Deterministic: the same input gives the same text.
 std::string BuildSceneMjcf(const Map& map, const QuadParams& params, const SceneOptions& options);
 
+// One vehicle of a scene with several.
+struct SceneVehicle {
+  std::string name;  // its elements are called "<name>/..." (model_names::Of); no '/' in it
+  QuadParams params;
+  Vec3 position = Vec3::Zero();  // its centre at the start [m] (VehicleRestPosition)
+  std::string shell_rgba;        // "r g b a" of its shell ("": the Tello's white)
+};
+
+// The colour of the i-th vehicle of a swarm ("r g b a"), as the scene and the report draw it:
+// eight well-separated hues, then again.
+std::string SwarmRgba(int index);
+
+// The scene with several vehicles in one world: as above, every vehicle with its own names,
+// colour, actuators and sensors; the chase camera follows the first (SceneOptions'
+// vehicle_position is not used: each vehicle brings its own).
+std::string BuildSceneMjcf(const Map& map, const std::vector<SceneVehicle>& vehicles,
+                           const SceneOptions& options);
+
 // The vehicle alone, resting on a floor in a 2 m test volume: the models/ file.
 std::string VehicleModelMjcf(const QuadParams& params);
 

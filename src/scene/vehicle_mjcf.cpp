@@ -155,7 +155,7 @@ TriangleMesh VisualMesh(const QuadParams& params, const std::string& part) {
 
 }  // namespace
 
-void WriteVehicleMeshes(const QuadParams& params, XmlWriter* xml) {
+void WriteVehicleMeshes(const QuadParams& params, const std::string& name, XmlWriter* xml) {
   for (const char* part : kVisualParts) {
     const TriangleMesh mesh = VisualMesh(params, part);
     Eigen::VectorXd vertices(3 * mesh.vertices.size());
@@ -168,8 +168,9 @@ void WriteVehicleMeshes(const QuadParams& params, XmlWriter* xml) {
       faces += (faces.empty() ? "" : " ") + std::to_string(f[0]) + " " + std::to_string(f[1]) +
                " " + std::to_string(f[2]);
     }
-    xml->Leaf("mesh",
-              {{"name", std::string("quad_") + part}, {"vertex", Vec(vertices)}, {"face", faces}});
+    xml->Leaf("mesh", {{"name", model_names::Of(name, std::string("quad_") + part)},
+                       {"vertex", Vec(vertices)},
+                       {"face", faces}});
   }
 }
 
@@ -184,19 +185,23 @@ std::string CameraXyAxes(const Vec3& eye, const Vec3& target) {
   return Vec(axes);
 }
 
-void WriteVehicleBody(const QuadParams& params, const Vec3& p_W, const Vec3& chase_offset_W,
+void WriteVehicleBody(const QuadParams& params, const std::string& name, const Vec3& p_W,
+                      const std::optional<Vec3>& chase_offset_W, const std::string& shell_rgba,
                       XmlWriter* xml) {
-  xml->Open("body", {{"name", model_names::kBody}, {"pos", Vec(p_W)}});
-  xml->Leaf("freejoint", {{"name", "quad_root"}});
+  const auto of = [&name](const std::string& element) { return model_names::Of(name, element); };
+  xml->Open("body", {{"name", of(model_names::kBody)}, {"pos", Vec(p_W)}});
+  xml->Leaf("freejoint", {{"name", of("quad_root")}});
   xml->Leaf("inertial",
             {{"pos", "0 0 0"}, {"mass", Num(params.mass)}, {"diaginertia", Vec(params.inertia)}});
-  xml->Leaf("camera", {{"name", model_names::kChaseCamera},
-                       {"mode", "trackcom"},
-                       {"pos", Vec(chase_offset_W)},
-                       {"xyaxes", CameraXyAxes(chase_offset_W, Vec3::Zero())}});
+  if (chase_offset_W) {
+    xml->Leaf("camera", {{"name", model_names::kChaseCamera},
+                         {"mode", "trackcom"},
+                         {"pos", Vec(*chase_offset_W)},
+                         {"xyaxes", CameraXyAxes(*chase_offset_W, Vec3::Zero())}});
+  }
 
   // collision: one box of the vehicle's full size, hidden in group 3
-  xml->Leaf("geom", {{"name", model_names::kHullGeom},
+  xml->Leaf("geom", {{"name", of(model_names::kHullGeom)},
                      {"type", "box"},
                      {"size", Vec(0.5 * params.collision_size)},
                      {"group", "3"},
@@ -205,32 +210,34 @@ void WriteVehicleBody(const QuadParams& params, const Vec3& p_W, const Vec3& cha
   // visuals: one mesh per colour (see WriteVehicleMeshes); a handful of geoms rather than one
   // per part keeps MuJoCo's per-step kinematics cheap
   for (const char* part : kVisualParts) {
-    xml->Leaf("geom", {{"name", std::string("quad_") + part},
+    const std::string mesh = of(std::string("quad_") + part);
+    const bool shell = std::string(part) == "shell" && !shell_rgba.empty();
+    xml->Leaf("geom", {{"name", mesh},
                        {"type", "mesh"},
                        {"class", "visual"},
-                       {"mesh", std::string("quad_") + part},
-                       {"rgba", RgbaOf(part)}});
+                       {"mesh", mesh},
+                       {"rgba", shell ? shell_rgba : std::string(RgbaOf(part))}});
   }
 
   // thrust acts at the rotor centres along the body z axis
   for (int i = 0; i < kNumRotors; ++i) {
-    xml->Leaf("site", {{"name", model_names::RotorSite(i)},
+    xml->Leaf("site", {{"name", of(model_names::RotorSite(i))},
                        {"pos", Vec(RotorPosition_B(params, i))},
                        {"size", Num(0.002)},
                        {"group", "4"}});
   }
-  xml->Leaf("site", {{"name", model_names::kImuSite}, {"size", Num(0.002)}, {"group", "4"}});
+  xml->Leaf("site", {{"name", of(model_names::kImuSite)}, {"size", Num(0.002)}, {"group", "4"}});
   xml->Close();
 }
 
-void WriteVehicleActuators(const QuadParams& params, XmlWriter* xml) {
+void WriteVehicleActuators(const QuadParams& params, const std::string& name, XmlWriter* xml) {
   for (int i = 0; i < kNumRotors; ++i) {
     Eigen::Matrix<double, 6, 1> gear;
     gear << 0, 0, 1, 0, 0, RotorYawMomentPerThrust(params, i);
     // filter dynamics: d(act)/dt = (ctrl - act) / tau, force = act (gain 1): first-order lag
     xml->Leaf("general",
-              {{"name", model_names::ThrustActuator(i)},
-               {"site", model_names::RotorSite(i)},
+              {{"name", model_names::Of(name, model_names::ThrustActuator(i))},
+               {"site", model_names::Of(name, model_names::RotorSite(i))},
                {"gear", Vec(gear)},
                {"dyntype", "filter"},
                {"dynprm", Num(params.motor_time_constant)},
@@ -241,10 +248,11 @@ void WriteVehicleActuators(const QuadParams& params, XmlWriter* xml) {
   }
 }
 
-void WriteVehicleSensors(XmlWriter* xml) {
+void WriteVehicleSensors(const std::string& name, XmlWriter* xml) {
+  const std::string site = model_names::Of(name, model_names::kImuSite);
   xml->Leaf("accelerometer",
-            {{"name", model_names::kAccelerometer}, {"site", model_names::kImuSite}});
-  xml->Leaf("gyro", {{"name", model_names::kGyro}, {"site", model_names::kImuSite}});
+            {{"name", model_names::Of(name, model_names::kAccelerometer)}, {"site", site}});
+  xml->Leaf("gyro", {{"name", model_names::Of(name, model_names::kGyro)}, {"site", site}});
 }
 
 }  // namespace aerobox::scene_detail

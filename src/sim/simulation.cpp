@@ -28,9 +28,26 @@ int RequireId(const mjModel* model, mjtObj type, const std::string& name,
   return id;
 }
 
+// The vehicles of a model: the lone one ("quad"), or every body called "<name>/quad".
+std::vector<std::string> VehicleNames(const mjModel* model) {
+  if (mj_name2id(model, mjOBJ_BODY, model_names::kBody) >= 0) return {""};
+  const std::string suffix = std::string("/") + model_names::kBody;
+  std::vector<std::string> names;
+  for (int b = 0; b < model->nbody; ++b) {
+    const char* name = mj_id2name(model, mjOBJ_BODY, b);
+    const std::string body = name != nullptr ? name : "";
+    if (body.size() > suffix.size() &&
+        body.compare(body.size() - suffix.size(), suffix.size(), suffix) == 0) {
+      names.push_back(body.substr(0, body.size() - suffix.size()));
+    }
+  }
+  return names.empty() ? std::vector<std::string>{""} : names;  // "" names the missing body
+}
+
 }  // namespace
 
-Simulation Simulation::FromXml(const std::string& xml, const std::string& source) {
+Simulation Simulation::FromXml(const std::string& xml, const std::string& source,
+                               const std::vector<std::string>& vehicles) {
   InstallMujocoMessageHandlers();
   // mjVFS is about 2 MB: keep it on the heap
   std::unique_ptr<mjVFS, VfsDeleter> vfs(new mjVFS);
@@ -44,7 +61,8 @@ Simulation Simulation::FromXml(const std::string& xml, const std::string& source
   char error[1024] = "";
   MjModelPtr model(mj_loadXML(kName, vfs.get(), error, sizeof(error)));
   if (!model) throw InputError({source, 0}, "MJCF", error);
-  return Simulation(std::move(model), source);
+  const std::vector<std::string> names = vehicles.empty() ? VehicleNames(model.get()) : vehicles;
+  return Simulation(std::move(model), source, names);
 }
 
 Simulation Simulation::FromFile(const std::string& path) {
@@ -52,27 +70,48 @@ Simulation Simulation::FromFile(const std::string& path) {
   char error[1024] = "";
   MjModelPtr model(mj_loadXML(path.c_str(), nullptr, error, sizeof(error)));
   if (!model) throw InputError({path, 0}, "MJCF", error);
-  return Simulation(std::move(model), path);
+  const std::vector<std::string> names = VehicleNames(model.get());
+  return Simulation(std::move(model), path, names);
 }
 
-Simulation::Simulation(MjModelPtr model, const std::string& source) : model_(std::move(model)) {
+Simulation::Simulation(MjModelPtr model, const std::string& source,
+                       const std::vector<std::string>& vehicles)
+    : model_(std::move(model)) {
   data_.reset(mj_makeData(model_.get()));
-  body_id_ = RequireId(model_.get(), mjOBJ_BODY, model_names::kBody, source);
+  if (vehicles.empty()) throw InputError({source, 0}, "", "a world needs a vehicle");
+  for (const std::string& name : vehicles) {
+    vehicles_.push_back(std::make_unique<MujocoVehicle>(model_.get(), data_.get(), name, source));
+  }
+  mj_forward(model_.get(), data_.get());
+}
+
+Simulation Simulation::Clone() const {
+  std::vector<std::string> names;
+  for (const auto& v : vehicles_) names.push_back(v->name());
+  return Simulation(MjModelPtr(mj_copyModel(nullptr, model_.get())), "a copy of the scene", names);
+}
+
+void Simulation::StepWorld() { mj_step(model_.get(), data_.get()); }
+
+MujocoVehicle::MujocoVehicle(mjModel* model, mjData* data, std::string name,
+                             const std::string& source)
+    : model_(model), data_(data), name_(std::move(name)) {
+  const auto of = [this](const std::string& element) { return model_names::Of(name_, element); };
+  body_id_ = RequireId(model_, mjOBJ_BODY, of(model_names::kBody), source);
   const int joint = model_->body_jntadr[body_id_];
   if (joint < 0 || model_->jnt_type[joint] != mjJNT_FREE) {
-    throw InputError({source, 0}, model_names::kBody, "the vehicle body has no free joint");
+    throw InputError({source, 0}, of(model_names::kBody), "the vehicle body has no free joint");
   }
   qpos_adr_ = model_->jnt_qposadr[joint];
   qvel_adr_ = model_->jnt_dofadr[joint];
   for (int i = 0; i < kNumRotors; ++i) {
-    actuator_ids_[i] =
-        RequireId(model_.get(), mjOBJ_ACTUATOR, model_names::ThrustActuator(i), source);
+    const std::string actuator = of(model_names::ThrustActuator(i));
+    actuator_ids_[i] = RequireId(model_, mjOBJ_ACTUATOR, actuator, source);
     // MuJoCo 2.2 keeps activations only for actuators with dynamics, and those come last
     // in the actuator list, so actuator k owns act[k - (nu - na)]
     act_adr_[i] = actuator_ids_[i] - (model_->nu - model_->na);
     if (model_->actuator_dyntype[actuator_ids_[i]] != mjDYN_FILTER || act_adr_[i] < 0) {
-      throw InputError({source, 0}, model_names::ThrustActuator(i),
-                       "the rotor actuator has no motor-lag filter");
+      throw InputError({source, 0}, actuator, "the rotor actuator has no motor-lag filter");
     }
   }
   made_.mass = model_->body_mass[body_id_];
@@ -84,11 +123,10 @@ Simulation::Simulation(MjModelPtr model, const std::string& source) : model_(std
     made_.lag[i] = model_->actuator_dynprm[mjNDYN * a];
     made_.limit[i] = model_->actuator_ctrlrange[2 * a + 1];
   }
-  mj_forward(model_.get(), data_.get());
 }
 
-void Simulation::ScaleVehicle(const VehicleScaling& s) {
-  mjModel* m = model_.get();
+void MujocoVehicle::ScaleVehicle(const VehicleScaling& s) {
+  mjModel* m = model_;
   m->body_mass[body_id_] = made_.mass * s.mass;
   for (int k = 0; k < 3; ++k) m->body_inertia[3 * body_id_ + k] = made_.inertia[k] * s.inertia[k];
   for (int i = 0; i < kNumRotors; ++i) {
@@ -98,26 +136,26 @@ void Simulation::ScaleVehicle(const VehicleScaling& s) {
     m->actuator_dynprm[mjNDYN * a] = made_.lag[i] * s.motor_lag[i];
     m->actuator_ctrlrange[2 * a + 1] = made_.limit[i] * s.rotor_limit[i];
   }
-  mj_setConst(m, data_.get());
+  mj_setConst(m, data_);
   ResetData();
 }
 
-Simulation Simulation::Clone() const {
-  return Simulation(MjModelPtr(mj_copyModel(nullptr, model_.get())), "a copy of the scene");
-}
-
-void Simulation::ResetData() {
-  mj_resetData(model_.get(), data_.get());
+void MujocoVehicle::ResetData() {
+  mj_resetData(model_, data_);
   warnings_seen_.fill(0);
-  mj_forward(model_.get(), data_.get());
+  mj_forward(model_, data_);
 }
 
-void Simulation::Step(const Vec4& thrust_commands) {
+void MujocoVehicle::SetCommands(const Vec4& thrust_commands) {
   for (int i = 0; i < kNumRotors; ++i) data_->ctrl[actuator_ids_[i]] = thrust_commands[i];
-  mj_step(model_.get(), data_.get());
 }
 
-void Simulation::SetExternalWrench(const Vec3& force_W, const Vec3& torque_W) {
+void MujocoVehicle::Step(const Vec4& thrust_commands) {
+  SetCommands(thrust_commands);
+  mj_step(model_, data_);
+}
+
+void MujocoVehicle::SetExternalWrench(const Vec3& force_W, const Vec3& torque_W) {
   double* applied = data_->xfrc_applied + 6 * body_id_;
   Eigen::Map<Vec3> force(applied);
   Eigen::Map<Vec3> torque(applied + 3);
@@ -125,7 +163,7 @@ void Simulation::SetExternalWrench(const Vec3& force_W, const Vec3& torque_W) {
   torque = torque_W;
 }
 
-Vec4 Simulation::RotorThrusts() const {
+Vec4 MujocoVehicle::RotorThrusts() const {
   Vec4 thrusts;
   for (int i = 0; i < kNumRotors; ++i) {
     thrusts[i] = data_->act[act_adr_[i]];
@@ -133,19 +171,19 @@ Vec4 Simulation::RotorThrusts() const {
   return thrusts;
 }
 
-void Simulation::SetRotorThrusts(const Vec4& thrusts) {
+void MujocoVehicle::SetRotorThrusts(const Vec4& thrusts) {
   for (int i = 0; i < kNumRotors; ++i) {
     data_->act[act_adr_[i]] = thrusts[i];
     data_->ctrl[actuator_ids_[i]] = thrusts[i];
   }
-  mj_forward(model_.get(), data_.get());
+  mj_forward(model_, data_);
 }
 
-void Simulation::SetProducedThrusts(const Vec4& thrusts) {
+void MujocoVehicle::SetProducedThrusts(const Vec4& thrusts) {
   for (int i = 0; i < kNumRotors; ++i) data_->act[act_adr_[i]] = thrusts[i];
 }
 
-State Simulation::VehicleState() const {
+State MujocoVehicle::VehicleState() const {
   State state;
   const double* qpos = data_->qpos + qpos_adr_;
   const double* qvel = data_->qvel + qvel_adr_;
@@ -156,7 +194,7 @@ State Simulation::VehicleState() const {
   return state;
 }
 
-void Simulation::SetVehicleState(const State& state) {
+void MujocoVehicle::SetVehicleState(const State& state) {
   double* qpos = data_->qpos + qpos_adr_;
   double* qvel = data_->qvel + qvel_adr_;
   Eigen::Map<Vec3> p_W(qpos);
@@ -166,21 +204,23 @@ void Simulation::SetVehicleState(const State& state) {
   QuatToWxyz(state.q_WB.normalized(), qpos + 3);
   v_W = state.v_W;
   w_B = state.w_B;
-  mj_forward(model_.get(), data_.get());
+  mj_forward(model_, data_);
 }
 
-Vec3 Simulation::LinearAcceleration_W() const {
+Vec3 MujocoVehicle::LinearAcceleration_W() const {
   return Eigen::Map<const Vec3>(data_->qacc + qvel_adr_);
 }
 
-Vec3 Simulation::AngularAcceleration_B() const {
+Vec3 MujocoVehicle::AngularAcceleration_B() const {
   return Eigen::Map<const Vec3>(data_->qacc + qvel_adr_ + 3);
 }
 
-std::string Simulation::TakeNewWarnings() {
+std::string MujocoVehicle::TakeNewWarnings() {
   std::string text;
   for (int i = 0; i < mjNWARNING; ++i) {
     const mjWarningStat& stat = data_->warning[i];
+    // another vehicle of the world reset the data (and MuJoCo's counts) since the last call
+    if (stat.number < warnings_seen_[i]) warnings_seen_[i] = 0;
     if (stat.number <= warnings_seen_[i]) continue;
     warnings_seen_[i] = stat.number;
     if (!text.empty()) text += "; ";
@@ -189,7 +229,7 @@ std::string Simulation::TakeNewWarnings() {
   return text;
 }
 
-bool Simulation::VehicleTouches() const {
+bool MujocoVehicle::VehicleTouches() const {
   for (int i = 0; i < data_->ncon; ++i) {
     const mjContact& contact = data_->contact[i];
     if ((model_->geom_bodyid[contact.geom1] == body_id_) !=
@@ -200,7 +240,7 @@ bool Simulation::VehicleTouches() const {
   return false;
 }
 
-std::vector<VehicleContact> Simulation::VehicleContacts() const {
+std::vector<VehicleContact> MujocoVehicle::VehicleContacts() const {
   std::vector<VehicleContact> contacts;
   for (int i = 0; i < data_->ncon; ++i) {
     const mjContact& contact = data_->contact[i];
@@ -208,9 +248,11 @@ std::vector<VehicleContact> Simulation::VehicleContacts() const {
     const bool second_is_vehicle = model_->geom_bodyid[contact.geom2] == body_id_;
     if (first_is_vehicle == second_is_vehicle) continue;
     const int other = first_is_vehicle ? contact.geom2 : contact.geom1;
-    const char* name = mj_id2name(model_.get(), mjOBJ_GEOM, other);
-    contacts.push_back({name != nullptr ? name : "",
-                        Vec3(contact.pos[0], contact.pos[1], contact.pos[2]), contact.dist});
+    const char* geom = mj_id2name(model_, mjOBJ_GEOM, other);
+    std::string name = geom != nullptr ? geom : "";
+    // a body of its own is another vehicle ("cf2/quad_hull"): named by the vehicle's name
+    if (model_->geom_bodyid[other] != 0) name = name.substr(0, name.find('/'));
+    contacts.push_back({name, Vec3(contact.pos[0], contact.pos[1], contact.pos[2]), contact.dist});
   }
   return contacts;
 }

@@ -20,4 +20,10 @@ inline constexpr const char* kChaseCamera = "chase";
 inline std::string RotorSite(int rotor) { return "rotor_" + std::to_string(rotor); }
 inline std::string ThrustActuator(int rotor) { return "thrust_" + std::to_string(rotor); }
 
+// An element of the vehicle called `vehicle` in a world of several ("cf1/quad", "cf1/thrust_0");
+// the lone vehicle of a scene has no name, and its elements keep their plain names.
+inline std::string Of(const std::string& vehicle, const std::string& element) {
+  return vehicle.empty() ? element : vehicle + "/" + element;
+}
+
 }  // namespace aerobox::model_names

@@ -95,9 +95,9 @@ TEST_CASE("scenario files: errors name the file, the line and the key") {
   CHECK(ScenarioError("name = \"a\"\n") == "scenes/x/scenario.toml:1: map: missing key 'map'");
   CHECK(ScenarioError("map = \"m.txt\"\nsed = 3\n") ==
         "scenes/x/scenario.toml:2: sed: unknown key (expected name, map, start, goal, goals, "
-        "stop_at_goals, hold, unknown, unknown_fraction, unknown_map, seed, [planner], "
-        "[trajectory], [vehicle], [controller], [flight], [wind], [aero], [sensors], [sensing], "
-        "[replan] or [render]); did you mean seed?");
+        "stop_at_goals, hold, unknown, unknown_fraction, unknown_map, seed, [[vehicles]], "
+        "[planner], [trajectory], [vehicle], [controller], [flight], [wind], [aero], [sensors], "
+        "[sensing], [replan], [swarm] or [render]); did you mean seed?");
   CHECK(ScenarioError("map = \"m.txt\"\n[sensor]\nimu = true\n")
             .find("sensor: unknown key (expected name, ") != std::string::npos);
   CHECK(ScenarioError("map = \"m.txt\"\n[sensor]\nimu = true\n").find("did you mean sensors?") !=
@@ -552,6 +552,74 @@ TEST_CASE("[controller]: a registered kind's own key wins over a built-in field 
       ScenarioError("map = \"m.txt\"\n[controller]\nkind = \"test_same_name\"\nposition_gian = 7\n")
           .find("rate_integral_limit; controller kind \"test_same_name\" adds position_gain); did "
                 "you mean position_gain?") != std::string::npos);
+}
+
+}  // namespace aerobox
+
+namespace aerobox {
+namespace {
+
+// The error a scenario of several vehicles in the swap scene's room gives, read as if it were a
+// file beside that room's map.
+std::string SwarmError(const std::string& vehicles) {
+  const std::string file = (testing::SourceDir() / "scenes" / "swarm_swap" / "x.toml").string();
+  try {
+    LoadFlightSetupFromText("map = \"map.json\"\n" + vehicles, file, {});
+  } catch (const InputError& error) {
+    const std::string what = error.what();
+    return what.substr(what.find("x.toml"));
+  }
+  FAIL_CHECK("no error for: " << vehicles);
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("[[vehicles]]: each vehicle's own kind, controller and rate, the rest shared") {
+  const std::string file = (testing::SourceDir() / "scenes" / "swarm_swap" / "x.toml").string();
+  const FlightSetup setup = LoadFlightSetupFromText(
+      "map = \"map.json\"\n[controller]\nkind = \"se3\"\n[swarm]\nseparation = 0.2\n"
+      "[[vehicles]]\nname = \"a\"\nstart = [1, 0, 1]\ngoal = [-1, 0, 1]\n"
+      "[[vehicles]]\nname = \"b\"\nkind = \"crazyflie\"\ncontroller = \"cascade\"\nrate = 500\n"
+      "start = [0, 1, 1]\ngoal = [0, -1, 1]\n",
+      file, {});
+  REQUIRE(setup.vehicles.size() == 2);
+  CHECK(setup.vehicles[0].vehicle_kind == "tello");
+  CHECK(setup.vehicles[0].controller.kind == "se3");
+  CHECK(setup.vehicles[1].vehicle_kind == "crazyflie");
+  CHECK(setup.vehicles[1].controller.kind == "cascade");
+  CHECK(setup.vehicles[1].controller.rate == 500);
+  CHECK(setup.vehicles[1].where.line == 10);
+  CHECK(setup.swarm.separation == 0.2);
+  // the first vehicle's start and goal stand for the scenario's
+  CHECK(setup.start == Vec3(1, 0, 1));
+  CHECK(setup.goal == Vec3(-1, 0, 1));
+  const FlightSetup b = setup.Member(1);
+  CHECK(b.name == "b");
+  CHECK(b.vehicle.mass == BuiltinVehicle("crazyflie")->mass);
+  CHECK(b.vehicles.empty());
+}
+
+TEST_CASE("[[vehicles]]: bad vehicles are refused naming the vehicle, the file and the line") {
+  const std::string a = "[[vehicles]]\nname = \"a\"\nstart = [1, 0, 1]\ngoal = [-1, 0, 1]\n";
+  CHECK(SwarmError(a + "[[vehicles]]\nname = \"a\"\nstart = [0, 1, 1]\ngoal = [0, -1, 1]\n") ==
+        "x.toml:6: vehicles.name: \"a\" is already the name of the vehicle on line 2");
+  CHECK(SwarmError(a + "[[vehicles]]\nname = \"b\"\nstart = [1.05, 0, 1]\ngoal = [0, -1, 1]\n")
+            .rfind("x.toml:6: vehicles.b.start: starts 0.05 m from a, inside it", 0) == 0);
+  CHECK(SwarmError(a + "[[vehicles]]\nname = \"b\"\nstart = [0, 1, 1]\ngoal = [0, -9, 1]\n")
+            .rfind("x.toml:6: vehicles.b.goal: (0, -9, 1) m is outside the map's bounds (-3, -3, "
+                   "0) .. (3, 3, 3) m",
+                   0) == 0);
+  CHECK(SwarmError(a + "[[vehicles]]\nname = \"b\"\nkind = \"blimp\"\nstart = [0, 1, 1]\n"
+                       "goal = [0, -1, 1]\n") ==
+        "x.toml:6: vehicles.b.kind: expected \"tello\" or \"crazyflie\", got \"blimp\"");
+  CHECK(SwarmError("[[vehicles]]\nname = \"a\"\nstart = [1, 0, 1]\n") ==
+        "x.toml:2: vehicles.goal: missing key: every [[vehicles]] table needs name, start and "
+        "goal");
+  CHECK(SwarmError("[[vehicles]]\nname = \"a/b\"\nstart = [1, 0, 1]\ngoal = [0, 0, 1]\n")
+            .rfind("x.toml:3: vehicles.name: expected a non-empty string without '/'", 0) == 0);
+  CHECK(SwarmError("[[vehicles]]\nnme = \"a\"\n").rfind("x.toml:3: vehicles.nme: unknown key", 0) ==
+        0);
 }
 
 }  // namespace aerobox

@@ -1,0 +1,148 @@
+#include "app/swarm_job.h"
+
+#include <filesystem>
+#include <iomanip>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+#include "app/exit_codes.h"
+#include "common/number_format.h"
+#include "mission/swarm_mission.h"
+#include "mission/telemetry_table.h"
+#include "telemetry/json_object.h"
+
+namespace aerobox {
+namespace fs = std::filesystem;
+namespace {
+
+std::vector<double> Point(const Vec3& p) { return {p.x(), p.y(), p.z()}; }
+
+// Each vehicle's files in its own folder; the world's pictures with the first vehicle's plan.
+struct SwarmOutputs {
+  SwarmOutputs(const std::string& folder, const FlightSetup& setup, const FlyOptions& options,
+               std::ostream& err)
+      : first(setup.Member(0)) {
+    for (size_t i = 0; i < setup.vehicles.size(); ++i) {
+      const std::string own = (fs::path(folder) / setup.vehicles[i].name).string();
+      fs::create_directories(own);
+      const FlightSetup member = setup.Member(i);
+      const int every =
+          options.telemetry_rate > 0
+              ? static_cast<int>(std::lround(member.controller.rate / options.telemetry_rate))
+              : 1;
+      csv.push_back(
+          std::make_unique<CsvOutputs>(own, every, TelemetryExtrasFor(member), options.telemetry));
+      parts.observers.push_back({csv.back().get()});
+    }
+    if (options.video || options.overview || options.frames_every > 0) {
+      pictures.emplace(folder, first, RenderOptionsFor(options), err);
+      parts.observers.front().push_back(&*pictures);
+    }
+  }
+  FlightSetup first;  // the pictures draw its plan
+  std::vector<std::unique_ptr<CsvOutputs>> csv;
+  std::optional<RenderOutputs> pictures;
+  SwarmParts parts;
+};
+
+JsonObject VehicleSummary(const SwarmMember& m, const SwarmSchedule& s, const PlanOutcome& plan,
+                          const FlightResult& f, double separation) {
+  JsonObject v;
+  v.Add("name", m.name)
+      .Add("vehicle", m.vehicle_kind)
+      .Add("controller", m.controller.kind)
+      .Add("start", Point(plan.start.used))
+      .Add("goal", Point(plan.goal.used))
+      .Add("flies", s.flies)
+      .Add("status", s.flies ? ToString(f.status) : "held its start")
+      .Add("note", s.note)
+      .Add("delay_s", s.delay)
+      .Add("detour", s.detour)
+      .Add("trajectory_time_s", s.duration)
+      .Add("obstacle", f.obstacle)
+      .Add("flight_time_s", f.time)
+      .Add("rms_error_m", f.rms_error)
+      .Add("max_error_m", f.max_error)
+      .Add("min_clearance_m", f.min_clearance)
+      .Add("min_separation_m", separation)
+      .Add("distance_m", f.distance)
+      .Add("top_speed_mps", f.top_speed);
+  return v;
+}
+
+JsonObject SwarmSummary(const FlightSetup& setup, const SwarmMissionResult& r) {
+  std::vector<JsonObject> vehicles;
+  for (size_t i = 0; i < setup.vehicles.size(); ++i) {
+    vehicles.push_back(VehicleSummary(setup.vehicles[i], r.schedule[i], r.plans[i],
+                                      r.flight.flights[i], r.flight.vehicle_min_separation[i]));
+  }
+  JsonObject swarm;
+  swarm.Add("planning", setup.swarm.planning)
+      .Add("separation_m", setup.swarm.separation)
+      .Add("downwash", setup.swarm.downwash)
+      .Add("all_reached", r.AllReached())
+      .Add("min_separation_m", r.flight.min_separation)
+      .Add("min_separation_time_s", r.flight.min_separation_time)
+      .Add("closest_pair", r.flight.closest_pair)
+      .Add("makespan_s", r.makespan)
+      .Add("alone_makespan_s", r.alone_makespan)
+      .Add("flight_time_s", r.flight.time)
+      .Add("flight_wall_time_s", r.flight_wall_time);
+  JsonObject summary;
+  summary.Add("scenario", setup.name)
+      .Add("status", r.AllReached() ? "reached goal" : "flight failed")
+      .Add("seed", static_cast<long long>(setup.seed))
+      .Add("map", setup.map.source)
+      .Add("swarm", swarm)
+      .Add("vehicles", vehicles);
+  return summary;
+}
+
+// The table: a line per vehicle, then the swarm's separation and makespan.
+std::string SwarmTable(const OutputFolder& output, const FlightSetup& setup,
+                       const SwarmMissionResult& r) {
+  std::ostringstream table;
+  table << std::fixed << std::setprecision(3) << "fly " << setup.name << " (seed " << setup.seed
+        << ", " << setup.vehicles.size() << " vehicles, planning " << setup.swarm.planning << ")\n";
+  for (size_t i = 0; i < setup.vehicles.size(); ++i) {
+    const SwarmSchedule& s = r.schedule[i];
+    const FlightResult& f = r.flight.flights[i];
+    table << "  " << std::left << std::setw(12) << setup.vehicles[i].name << std::right;
+    if (!s.flies) {
+      table << "held its start: " << s.note << "\n";
+      continue;
+    }
+    table << ToString(f.status) << " after " << f.time << " s";
+    if (!f.obstacle.empty()) table << ", hit " << f.obstacle;
+    if (s.delay > 0) table << "; waited " << s.delay << " s";
+    if (!s.detour.empty()) table << "; bent " << s.detour;
+    table << "; tracking RMS " << f.rms_error << " m, closest vehicle "
+          << r.flight.vehicle_min_separation[i] << " m\n";
+  }
+  table << "  separation  " << r.flight.min_separation << " m at least (" << r.flight.closest_pair
+        << ", at " << r.flight.min_separation_time << " s)\n"
+        << "  makespan    " << r.makespan << " s scheduled, " << r.alone_makespan
+        << " s for the longest flown alone; " << r.flight.time << " s of flight in "
+        << r.flight_wall_time << " s wall\n"
+        << "  files       " << output.path() << "/<vehicle>/{path,trajectory,telemetry}.csv, "
+        << "summary.json\n";
+  return table.str();
+}
+
+}  // namespace
+
+int FlySwarmInto(const OutputFolder& output, const FlightSetup& setup, const FlyOptions& options,
+                 std::ostream& out, std::ostream& err) {
+  SwarmOutputs outputs(output.staging(), setup, options, err);
+  if (options.progress) {
+    err << "fly " << setup.name << ": planning " << setup.vehicles.size() << " vehicles\n";
+  }
+  const SwarmMissionResult result = RunSwarm(setup, outputs.parts);
+  out << SwarmTable(output, setup, result);
+  WriteFileAtomically((fs::path(output.staging()) / "summary.json").string(),
+                      SwarmSummary(setup, result).Text());
+  return result.AllReached() ? kExitReachedGoal : kExitFlightFailed;
+}
+
+}  // namespace aerobox

@@ -1,0 +1,215 @@
+#include "mission/swarm_mission.h"
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <stdexcept>
+
+#include "common/number_format.h"
+#include "geometry/collision_world.h"
+#include "mission/plan.h"
+#include "scene/scene_mjcf.h"
+
+namespace aerobox {
+
+bool SwarmMissionResult::AllReached() const {
+  return flight.AllReached() && std::all_of(schedule.begin(), schedule.end(),
+                                            [](const SwarmSchedule& s) { return s.flies; });
+}
+
+namespace {
+
+// At rest at `p` [m] for ever: a vehicle that holds its start.
+Reference Parked(const Vec3& p) {
+  Reference parked;
+  parked.evaluate = [p](double, int derivative) {
+    return derivative == kPosition ? p : Vec3::Zero();
+  };
+  return parked;
+}
+
+bool Planned(const PlanOutcome& plan) {
+  return plan.result.status == PlanStatus::kSolved && plan.trajectory &&
+         plan.trajectory->status == TrajectoryStatus::kSolved;
+}
+
+// The bends tried when waiting is not enough: the path through a point beside its middle, up,
+// across (either side) or down, one to three separations away.
+struct Bend {
+  Vec3 offset;
+  std::string words;
+};
+std::vector<Bend> Bends(const Vec3& start, const Vec3& goal, double step) {
+  Vec3 across = Vec3::UnitZ().cross(goal - start);
+  across = across.norm() > 1e-9 ? across.normalized() : Vec3::UnitX();
+  std::vector<Bend> bends;
+  for (int k = 1; k <= 3; ++k) {
+    const double d = k * step;
+    const std::string far = FormatNumber(std::round(d * 100) / 100) + " m ";
+    bends.push_back({d * Vec3::UnitZ(), far + "up"});
+    bends.push_back({d * across, far + "to the left"});
+    bends.push_back({-d * across, far + "to the right"});
+    bends.push_back({-d * Vec3::UnitZ(), far + "down"});
+  }
+  return bends;
+}
+
+// Vehicle i's schedule among the reservations of those before it: a wait, or a bent path and a
+// wait (its plan then holds the bent path and trajectory), or none.
+SwarmSchedule ScheduleOne(const FlightSetup& member, PlanOutcome* plan,
+                          const std::vector<Reservation>& before, const SwarmParams& swarm,
+                          Reservation* reserved) {
+  SwarmSchedule s;
+  const double radius = VehicleRadius(member.vehicle);
+  const Reservation own{ReferenceOf(plan->trajectory->trajectory), radius};
+  s.duration = own.reference.duration;
+  if (const std::optional<double> delay = ConflictFreeDelay(own, before, swarm)) {
+    s.flies = true;
+    s.delay = *delay;
+    *reserved = {Delayed(own.reference, *delay), radius};
+    return s;
+  }
+  const Vec3 a = plan->start.used, b = plan->goal.used;
+  const CollisionWorld world(member.map, member.PlannerCollision());
+  for (const Bend& bend : Bends(a, b, 1.5 * (2 * radius + swarm.separation))) {
+    const Vec3 middle = 0.5 * (a + b) + bend.offset;
+    if (!world.IsSegmentFree(a, middle) || !world.IsSegmentFree(middle, b)) continue;
+    const std::vector<Vec3> path = {a, middle, b};
+    TrajectoryResult bent = TrajectoryAlong(member, path);
+    if (bent.status != TrajectoryStatus::kSolved) continue;
+    const Reservation candidate{ReferenceOf(bent.trajectory), radius};
+    const std::optional<double> delay = ConflictFreeDelay(candidate, before, swarm);
+    if (!delay) continue;
+    s.flies = true;
+    s.delay = *delay;
+    s.detour = bend.words;
+    s.duration = candidate.reference.duration;
+    *reserved = {Delayed(candidate.reference, *delay), radius};
+    plan->result.path = path;
+    plan->trajectory = std::move(bent);
+    return s;
+  }
+  s.note = "no plan keeps clear of the vehicles before it within " + FormatNumber(swarm.max_wait) +
+           " s of waiting or a bend";
+  return s;
+}
+
+// A vehicle that holds its start blocks those that would pass through it: they hold theirs too,
+// until none does.
+void HoldWhereBlocked(const FlightSetup& setup, std::vector<Reservation>* reserved,
+                      SwarmMissionResult* result) {
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (size_t i = 0; i < reserved->size(); ++i) {
+      if (!result->schedule[i].flies) continue;
+      for (size_t j = 0; j < reserved->size(); ++j) {
+        if (j == i || result->schedule[j].flies) continue;
+        if (Check((*reserved)[i], (*reserved)[j], setup.swarm.separation).margin >= 0.0) continue;
+        result->schedule[i].flies = false;
+        result->schedule[i].note =
+            "would pass " + setup.vehicles[j].name + ", which holds its start";
+        (*reserved)[i] = {Parked(result->plans[i].start.used), (*reserved)[i].radius};
+        changed = true;
+        break;
+      }
+    }
+  }
+}
+
+// The schedule: each vehicle in the order given against those before it (prioritised), or each
+// on its own ("none").
+void Schedule(const FlightSetup& setup, const std::vector<FlightSetup>& members,
+              SwarmMissionResult* result) {
+  std::vector<Reservation> reserved;
+  for (size_t i = 0; i < members.size(); ++i) {
+    PlanOutcome& plan = result->plans[i];
+    const double radius = VehicleRadius(members[i].vehicle);
+    SwarmSchedule s;
+    Reservation mine{Parked(plan.start.used), radius};
+    if (!Planned(plan)) {
+      s.note = plan.result.status != PlanStatus::kSolved ? "no path" : "no feasible trajectory";
+    } else {
+      const PiecewiseTrajectory& alone = plan.trajectory->trajectory;
+      result->alone_makespan = std::max(result->alone_makespan, alone.duration());
+      if (setup.swarm.planning == "none") {
+        s.flies = true;
+        s.duration = alone.duration();
+        mine = {ReferenceOf(alone), radius};
+      } else {
+        s = ScheduleOne(members[i], &plan, reserved, setup.swarm, &mine);
+        if (!s.flies) mine = {Parked(plan.start.used), radius};
+      }
+    }
+    result->schedule.push_back(s);
+    reserved.push_back(mine);
+  }
+  if (setup.swarm.planning != "none") HoldWhereBlocked(setup, &reserved, result);
+}
+
+// The vehicles' flights in the world, from their plans and schedule.
+struct Fleet {
+  std::vector<std::unique_ptr<CollisionWorld>> worlds;
+  std::vector<std::unique_ptr<Controller>> controllers;
+  std::vector<SwarmVehicle> vehicles;
+};
+
+}  // namespace
+
+SwarmMissionResult RunSwarm(const FlightSetup& setup, const SwarmParts& parts) {
+  setup.Validate();
+  if (setup.vehicles.empty()) throw std::invalid_argument("RunSwarm: the set-up has no vehicles");
+  const size_t n = setup.vehicles.size();
+  static const std::vector<MissionObserver*> kNone;
+  const auto observers = [&](size_t i) -> const std::vector<MissionObserver*>& {
+    return i < parts.observers.size() ? parts.observers[i] : kNone;
+  };
+  std::vector<FlightSetup> members;
+  for (size_t i = 0; i < n; ++i) members.push_back(setup.Member(i));
+  SwarmMissionResult result;
+  for (const FlightSetup& member : members) result.plans.push_back(PlanFlight(member));
+  Schedule(setup, members, &result);
+  for (size_t i = 0; i < n; ++i) {
+    for (MissionObserver* o : observers(i)) o->OnPlan(result.plans[i]);
+  }
+
+  std::vector<std::string> names;
+  for (const SwarmMember& m : setup.vehicles) names.push_back(m.name);
+  Simulation sim = Simulation::FromXml(SceneMjcfFor(setup), setup.name + " (scene)", names);
+  for (MissionObserver* o : observers(0)) o->OnScene(sim, {});
+  Fleet fleet;
+  for (size_t i = 0; i < n; ++i) {
+    const FlightSetup& member = members[i];
+    const PlanOutcome& plan = result.plans[i];
+    PlaceVehicleAtStart(setup.map, member.vehicle, member.start, plan.start.used,
+                        &sim.vehicle(static_cast<int>(i)));
+    fleet.worlds.push_back(std::make_unique<CollisionWorld>(
+        setup.map, CollisionParams{member.vehicle.collision_size, 0.0}));
+    fleet.controllers.push_back(MakeController(member.controller, member.vehicle));
+    SwarmVehicle v;
+    v.name = member.name;
+    const SwarmSchedule& s = result.schedule[i];
+    v.reference = s.flies ? Delayed(ReferenceOf(plan.trajectory->trajectory), s.delay)
+                          : Parked(plan.start.used);
+    v.loop = LoopFor(member, plan, fleet.controllers.back().get(), *fleet.worlds.back());
+    v.loop.seed = setup.seed + i;  // each vehicle's own turbulence and sensor noise
+    if (!observers(i).empty()) {
+      v.loop.telemetry = [&observers, i](const TelemetrySample& sample) {
+        for (MissionObserver* o : observers(i)) o->OnSample(sample);
+      };
+    }
+    for (MissionObserver* o : observers(i)) o->OnFlightStart(sim, *fleet.controllers.back());
+    fleet.vehicles.push_back(std::move(v));
+  }
+  const auto wall = std::chrono::steady_clock::now();
+  result.flight = FlySwarm(fleet.vehicles, setup.flight, setup.swarm, &sim);
+  result.flight_wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall).count();
+  for (size_t i = 0; i < n; ++i) {
+    const SwarmSchedule& s = result.schedule[i];
+    if (s.flies) result.makespan = std::max(result.makespan, s.delay + s.duration);
+    for (MissionObserver* o : observers(i)) o->OnFlightEnd(sim, result.flight.flights[i]);
+  }
+  return result;
+}
+
+}  // namespace aerobox
