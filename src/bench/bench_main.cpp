@@ -23,6 +23,7 @@
 #include "bench/rl_benchmark.h"
 #include "bench/robustness.h"
 #include "bench/solver_comparison.h"
+#include "bench/swarm_benchmark.h"
 #include "bench/sweep_benchmark.h"
 #include "common/error.h"
 #include "common/progress.h"
@@ -221,6 +222,12 @@ const std::vector<BenchSection>& Sections() {
            CityBenchmark(c.city, c.Scenario("window"), c.size.Count(50, 2), out, *c.progress,
                          c.size);
          }
+       }},
+      {"swarm",
+       [](const BenchContext& c, std::ostream& out) {
+         out << "## Several vehicles in one world: cost per vehicle, and the antipodal swap\n\n"
+             << std::flush;
+         RunSwarmBenchmark(c.Scenario("swarm_swap"), out, c.size);
        }},
       {"planning", PlanningSection},
   };

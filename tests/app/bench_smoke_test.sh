@@ -28,7 +28,8 @@ LD_PRELOAD="${AEROBOX_PYTHON_PRELOAD:-}" \
   "$aerobox" bench --smoke --city "$work/city.csv" > "$work/tables.md" 2> "$work/progress.txt" ||
   { cat "$work/tables.md" "$work/progress.txt"; echo "FAIL: aerobox bench --smoke failed"; exit 1; }
 for heading in "Minimum snap" "The video path" "Closed loop" "Flight time" "A Python controller" \
-  "RotorPy's Environment" "Learning environments" "Robustness" "Replanning" "Sweep throughput" "City scale" "RRT\*"; do
+  "RotorPy's Environment" "Learning environments" "Robustness" "Replanning" "Sweep throughput" "City scale" "RRT\*" \
+  "Navigation" "Several vehicles in one world"; do
   grep -q "^## $heading" "$work/tables.md" ||
     { cat "$work/tables.md"; echo "FAIL: no '$heading' section"; exit 1; }
 done
@@ -48,6 +49,9 @@ grep -q "aerobox / RotorPy | aerobox rigid: env steps/s | rigid / RotorPy |$" "$
   { cat "$work/tables.md"; echo "FAIL: the learning environments' peers table is missing"; exit 1; }
 grep -q "^| OctoMap | [0-9.]* ms | 1.00x |" "$work/tables.md" ||
   { cat "$work/tables.md"; echo "FAIL: the occupancy map's comparison with OctoMap is missing"; exit 1; }
+grep -q "^| vehicles | arrived | contacts | min separation \[m\] |" "$work/tables.md" &&
+  grep -q "^| 4 | 4/4 | 0 |" "$work/tables.md" ||
+  { cat "$work/tables.md"; echo "FAIL: the swarm's swap table is missing, or a vehicle did not arrive"; exit 1; }
 grep -q "^| navigate |" "$work/tables.md" ||
   { cat "$work/tables.md"; echo "FAIL: the learning environments' table lacks navigate"; exit 1; }
 # a misspelt section is refused before any work, naming the one it looks like
@@ -57,4 +61,4 @@ fi
 grep -q "unknown section 'robustnes' (did you mean 'robustness'?)" "$work/err.txt" ||
   { cat "$work/err.txt"; echo "FAIL: the unknown section's message"; exit 1; }
 [ ! -s "$work/out.txt" ] || { cat "$work/out.txt"; echo "FAIL: work before the refusal"; exit 1; }
-echo "bench smoke: all 12 sections ran"
+echo "bench smoke: all 14 sections ran"

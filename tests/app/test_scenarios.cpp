@@ -296,36 +296,60 @@ TEST_CASE("scenario the FCND city: a 674 m flight at more than 6 m/s on average"
 }  // namespace aerobox
 
 namespace aerobox {
+namespace {
 
-// Eight Crazyflies on a 2 m circle trade places through its centre, each with its own cascade:
-// every one arrives, none touches another, and the closest two stay more than twice a vehicle's
-// radius apart (prioritised planning keeps 0.1 m beyond both radii; 0.40 m measured).
-TEST_CASE("scenario swarm_swap: eight vehicles trade places without contact") {
+// A scene of several vehicles flown through the command: every one arrives without contact,
+// tracks within the bounds above, and keeps more than `separation` [m] from the others; each has
+// its files in a folder of its own. Returns the summary.
+nlohmann::json CheckSwarm(const char* name, size_t vehicles, double separation) {
   const testing::TempDir dir;
   const testing::CliRun run = testing::RunAerobox(
-      {"fly", (testing::SourceDir() / "scenes" / "swarm_swap" / "scenario.toml").string(),
-       "--no-video", "--quiet", "--out", (dir.path() / "out").string()});
+      {"fly", (testing::SourceDir() / "scenes" / name / "scenario.toml").string(), "--no-video",
+       "--quiet", "--out", (dir.path() / "out").string()});
   CAPTURE(run.out);
   CAPTURE(run.err);
   REQUIRE(run.code == kExitReachedGoal);
   const nlohmann::json summary = testing::ReadSummary(dir.path() / "out" / "summary.json");
   CHECK(summary["swarm"]["all_reached"] == true);
-  const double radius = 0.5 * std::sqrt(0.1 * 0.1 + 0.1 * 0.1 + 0.03 * 0.03);  // a Crazyflie
-  CHECK(testing::SummaryNumber(summary["swarm"], "min_separation_m") > 2 * radius);
-  REQUIRE(summary["vehicles"].size() == 8);
+  CHECK(testing::SummaryNumber(summary["swarm"], "min_separation_m") > separation);
+  REQUIRE(summary["vehicles"].size() == vehicles);
   for (const nlohmann::json& v : summary["vehicles"]) {
     CAPTURE(v.dump());
     CHECK(v["status"] == "reached goal");
     CHECK(v["obstacle"] == "");
+    CHECK(testing::SummaryNumber(v, "min_clearance_m") > 0);
     CHECK(testing::SummaryNumber(v, "rms_error_m") < kMaxRms + 0.02);
-    const std::string name = v["name"];
-    CHECK(std::filesystem::exists(dir.path() / "out" / name / "telemetry.csv"));
-    CHECK(std::filesystem::exists(dir.path() / "out" / name / "trajectory.csv"));
+    const std::string vehicle = v["name"];
+    CHECK(std::filesystem::exists(dir.path() / "out" / vehicle / "telemetry.csv"));
+    CHECK(std::filesystem::exists(dir.path() / "out" / vehicle / "trajectory.csv"));
   }
-  MESSAGE("swarm_swap: separation "
-          << testing::SummaryNumber(summary["swarm"], "min_separation_m") << " m, makespan "
-          << testing::SummaryNumber(summary["swarm"], "makespan_s") << " s against "
-          << testing::SummaryNumber(summary["swarm"], "alone_makespan_s") << " s alone");
+  MESSAGE(name << ": separation " << testing::SummaryNumber(summary["swarm"], "min_separation_m")
+               << " m, makespan " << testing::SummaryNumber(summary["swarm"], "makespan_s")
+               << " s against " << testing::SummaryNumber(summary["swarm"], "alone_makespan_s")
+               << " s alone");
+  return summary;
+}
+
+}  // namespace
+
+// Eight Crazyflies on a 2 m circle trade places through its centre, each with its own cascade:
+// every one arrives, none touches another, and the closest two stay more than twice a vehicle's
+// radius apart (prioritised planning keeps 0.1 m beyond both radii; 0.40 m measured).
+TEST_CASE("scenario swarm_swap: eight vehicles trade places without contact") {
+  const double radius = 0.5 * std::sqrt(0.1 * 0.1 + 0.1 * 0.1 + 0.03 * 0.03);  // a Crazyflie
+  const nlohmann::json summary = CheckSwarm("swarm_swap", 8, 2 * radius);
+  CHECK(testing::SummaryNumber(summary["swarm"], "makespan_s") >
+        testing::SummaryNumber(summary["swarm"], "alone_makespan_s"));  // some had to wait
+}
+
+// Three Tellos abreast through the window and over the far wall (0.98 m apart at the closest).
+TEST_CASE("scenario swarm_window: a formation through the window") {
+  CheckSwarm("swarm_window", 3, 0.5);
+}
+
+// Four Tellos through the maze at once, on crossing routes (0.36 m apart at the closest).
+TEST_CASE("scenario swarm_maze: four vehicles through the maze") {
+  CheckSwarm("swarm_maze", 4, 0.25);
 }
 
 }  // namespace aerobox
