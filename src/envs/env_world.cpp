@@ -104,36 +104,42 @@ void EnvWorld::Reset(std::optional<std::uint64_t> seed, float* observation,
   Observe(observation);
 }
 
-ControlCommand EnvWorld::CommandOf(const double* a) {
-  const double low = vehicle_.MinRotorThrust(), high = vehicle_.MaxRotorThrust();
+ControlCommand ActionCommand(const EnvParams& params, const QuadParams& vehicle, const double* a) {
+  const double low = vehicle.MinRotorThrust(), high = vehicle.MaxRotorThrust();
   const auto rotor = [&](double x) { return low + 0.5 * (x + 1.0) * (high - low); };
   ControlCommand c;
-  c.level = level_;
+  c.level = LevelOf(params.action);
   c.thrust = 4.0 * rotor(a[0]);
-  if (velocity_) {
-    PositionSetpoint setpoint;
-    setpoint.p_W = seen_.p_W;
-    setpoint.v_W = Vec3(a[0], a[1], a[2]) * params_.max_speed;
-    setpoint.yaw = a[3] * kPi;
-    AttitudeSetpoint out;
-    out.thrust = vehicle_.mass * kGravity;
-    velocity_loop_.Update(setpoint, seen_.p_W, seen_.v_W, seen_.q_WB, 1.0 / params_.control_rate,
-                          &out);  // a state that is not finite keeps the level hover
-    c.thrust = out.thrust;
-    c.q_WB = out.q_WB;
-  } else if (level_ == CommandLevel::kRotorThrusts) {
+  if (c.level == CommandLevel::kRotorThrusts) {
     for (int i = 0; i < 4; ++i) c.rotor_thrusts[i] = rotor(a[i]);
-  } else if (level_ == CommandLevel::kThrustMoment) {
-    const double roll_pitch = high * vehicle_.ArmLength();
-    const double yaw = 2.0 * high * vehicle_.yaw_moment_per_thrust;
+  } else if (c.level == CommandLevel::kThrustMoment) {
+    const double roll_pitch = high * vehicle.ArmLength();
+    const double yaw = 2.0 * high * vehicle.yaw_moment_per_thrust;
     c.moment_B = Vec3(a[1] * roll_pitch, a[2] * roll_pitch, a[3] * yaw);
-  } else if (level_ == CommandLevel::kThrustRates) {
-    c.rate_B = Vec3(a[1], a[2], a[3]) * params_.max_rate;
+  } else if (c.level == CommandLevel::kThrustRates) {
+    c.rate_B = Vec3(a[1], a[2], a[3]) * params.max_rate;
   } else {
     c.q_WB = Quat(Eigen::AngleAxisd(a[3] * kPi, Vec3::UnitZ())) *
-             Quat(Eigen::AngleAxisd(a[2] * params_.max_tilt, Vec3::UnitY())) *
-             Quat(Eigen::AngleAxisd(a[1] * params_.max_tilt, Vec3::UnitX()));
+             Quat(Eigen::AngleAxisd(a[2] * params.max_tilt, Vec3::UnitY())) *
+             Quat(Eigen::AngleAxisd(a[1] * params.max_tilt, Vec3::UnitX()));
   }
+  return c;
+}
+
+ControlCommand EnvWorld::CommandOf(const double* a) {
+  if (!velocity_) return ActionCommand(params_, vehicle_, a);
+  ControlCommand c;
+  c.level = level_;
+  PositionSetpoint setpoint;
+  setpoint.p_W = seen_.p_W;
+  setpoint.v_W = Vec3(a[0], a[1], a[2]) * params_.max_speed;
+  setpoint.yaw = a[3] * kPi;
+  AttitudeSetpoint out;
+  out.thrust = vehicle_.mass * kGravity;
+  velocity_loop_.Update(setpoint, seen_.p_W, seen_.v_W, seen_.q_WB, 1.0 / params_.control_rate,
+                        &out);  // a state that is not finite keeps the level hover
+  c.thrust = out.thrust;
+  c.q_WB = out.q_WB;
   return c;
 }
 

@@ -30,6 +30,10 @@ struct EnvStep {
   std::vector<double> terms;  // the reward's terms (EnvParams::RewardTermNames), summing to it
 };
 
+// The command an action of every level but "velocity" asks for (docs/learning.md's scaling):
+// `a` holds ActionSize values, each in [-1, 1].
+ControlCommand ActionCommand(const EnvParams& params, const QuadParams& vehicle, const double* a);
+
 class EnvWorld {
  public:
   // `physics`: this world's own physics of the environment's scene, made from `map` (the task

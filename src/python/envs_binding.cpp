@@ -5,6 +5,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "envs/env_batch.h"
+#include "envs/swarm_world.h"
 #include "python/py_params.h"
 #include "python/seams.h"
 #include "render/renderer.h"
@@ -166,6 +168,77 @@ class EnvCore {
   const Simulation* rendered_ = nullptr;
 };
 
+// Several agents in one world (aerobox.marl): numpy in and out, the GIL released while it steps.
+class SwarmCore {
+ public:
+  SwarmCore(const py::dict& kwargs, int agents, const std::vector<double>& room, std::string who)
+      : who_(std::move(who)) {
+    EnvParams params;
+    ParamsFromKwargs(kwargs, who_, &params);
+    if (room.size() != 6) throw py::value_error(who_ + ": room: expected six numbers [m]");
+    try {
+      world_ = std::make_unique<SwarmWorld>(
+          params, agents, Aabb{Vec3(room[0], room[1], room[2]), Vec3(room[3], room[4], room[5])});
+    } catch (const std::invalid_argument& e) {
+      throw py::value_error(who_ + ": " + e.what());
+    }
+    action_size_ = params.ActionSize();
+  }
+
+  int agents() const { return world_->agents(); }
+  int action_size() const { return action_size_; }
+  double time() const { return world_->time(); }
+  py::dict quad_params() const { return python::VehicleDict(world_->vehicle()); }
+
+  void Reset(const py::array_t<double, py::array::c_style | py::array::forcecast>& starts) {
+    if (starts.ndim() != 2 || starts.shape(0) != agents() || starts.shape(1) != 3) {
+      throw py::value_error(who_ + ": reset: the starts need shape (" + std::to_string(agents()) +
+                            ", 3)");
+    }
+    std::vector<Vec3> points;
+    for (int i = 0; i < agents(); ++i)
+      points.emplace_back(starts.at(i, 0), starts.at(i, 1), starts.at(i, 2));
+    world_->Reset(points);
+  }
+
+  // Each agent's action, or a row of NaN for an agent out of the game (rotors off); returns what
+  // each touched ("" nothing).
+  std::vector<std::string> Step(
+      const py::array_t<double, py::array::c_style | py::array::forcecast>& actions) {
+    if (actions.ndim() != 2 || actions.shape(0) != agents() || actions.shape(1) != action_size_) {
+      throw py::value_error(who_ + ": step: the actions need shape (" + std::to_string(agents()) +
+                            ", " + std::to_string(action_size_) + ")");
+    }
+    std::vector<const double*> rows;
+    for (int i = 0; i < agents(); ++i) {
+      const double* row = actions.data(i, 0);
+      rows.push_back(std::isnan(row[0]) ? nullptr : row);
+    }
+    py::gil_scoped_release free;
+    return world_->Step(rows);
+  }
+
+  // Every agent's state, one row each: x, y, z, vx, vy, vz, qw, qx, qy, qz, wx, wy, wz (world
+  // position and velocity, body-to-world attitude, body rates).
+  py::array_t<double> States() const {
+    py::array_t<double> out({agents(), 13});
+    for (int i = 0; i < agents(); ++i) {
+      const State s = world_->state(i);
+      double* row = out.mutable_data(i, 0);
+      const double values[13] = {s.p_W.x(), s.p_W.y(),  s.p_W.z(),  s.v_W.x(),  s.v_W.y(),
+                                 s.v_W.z(), s.q_WB.w(), s.q_WB.x(), s.q_WB.y(), s.q_WB.z(),
+                                 s.w_B.x(), s.w_B.y(),  s.w_B.z()};
+      std::copy(values, values + 13, row);
+    }
+    return out;
+  }
+
+ private:
+  std::string who_;
+  std::unique_ptr<SwarmWorld> world_;
+  int action_size_ = 4;
+};
+
 // The parameters' reference (key, unit, default, range, meaning), for the documentation.
 py::list EnvKeys() {
   py::list rows;
@@ -191,6 +264,16 @@ void BindEnvs(py::module_& m) {
       .def("reset_some", &EnvCore::ResetSome, py::arg("worlds"))
       .def("step", &EnvCore::Step, py::arg("actions"))
       .def("render", &EnvCore::Render, py::arg("world"), py::arg("width"), py::arg("height"));
+  py::class_<SwarmCore>(m, "SwarmCore")
+      .def(py::init<const py::dict&, int, const std::vector<double>&, std::string>(),
+           py::arg("params"), py::arg("agents"), py::arg("room"), py::arg("who"))
+      .def_property_readonly("agents", &SwarmCore::agents)
+      .def_property_readonly("action_size", &SwarmCore::action_size)
+      .def_property_readonly("time", &SwarmCore::time)
+      .def_property_readonly("quad_params", &SwarmCore::quad_params)
+      .def("reset", &SwarmCore::Reset, py::arg("starts"))
+      .def("step", &SwarmCore::Step, py::arg("actions"))
+      .def("states", &SwarmCore::States);
   m.def("env_keys", &EnvKeys);
 }
 
