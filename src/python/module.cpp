@@ -473,6 +473,141 @@ class SimulatorCore {
   std::unique_ptr<VehicleWorld> world_;
 };
 
+// Several vehicles in one world (aerobox.Swarm): run() flies each vehicle's trajectory with its
+// own controller, all at once (FlySwarm), and gives each vehicle's result as Simulator.run does.
+class SwarmSimulatorCore {
+ public:
+  explicit SwarmSimulatorCore(SetupPtr setup) : setup_(std::move(setup)) {
+    if (setup_->vehicles.empty()) throw py::value_error("aerobox.Swarm: no vehicles");
+    for (size_t i = 0; i < setup_->vehicles.size(); ++i) {
+      members_.push_back(setup_->Member(i));
+      names_.push_back(setup_->vehicles[i].name);
+    }
+    xml_ = SceneMjcfFor(*setup_);
+  }
+
+  std::vector<std::string> names() const { return names_; }
+  py::list VehicleParams() const {
+    py::list vehicles;
+    for (const FlightSetup& m : members_) vehicles.append(VehicleDict(m.vehicle));
+    return vehicles;
+  }
+
+  // One controller (a built-in's name or an object with update(t, state, flat_output)) and one
+  // trajectory per vehicle, in the vehicles' order.
+  py::dict Run(const py::list& controllers, const py::list& trajectories, double t_final,
+               double control_rate, const std::string& choice) {
+    const size_t n = members_.size();
+    if (controllers.size() != n || trajectories.size() != n) {
+      throw py::value_error("aerobox.Swarm.run: one controller and one trajectory per vehicle (" +
+                            std::to_string(n) + ")");
+    }
+    if (!(control_rate > 0)) throw py::value_error("control_rate must be positive [Hz]");
+    if (!(t_final >= 0) || !std::isfinite(t_final)) {
+      throw py::value_error("t_final must be a time >= 0 [s] (0: the trajectories' duration)");
+    }
+    Simulation sim = Checked([&] { return Simulation::FromXml(xml_, setup_->name, names_); });
+    std::vector<Flown> flown(n);
+    std::vector<SwarmVehicle> vehicles(n);
+    FlightParams params = setup_->flight;
+    for (size_t i = 0; i < n; ++i) {
+      Prepare(i, controllers[i], trajectories[i], t_final, control_rate, choice, &sim, &flown[i],
+              &vehicles[i]);
+      if (t_final > 0) {
+        params.settle_time = std::max(0.0, t_final - vehicles[i].reference.duration);
+      }
+    }
+    const auto begin = std::chrono::steady_clock::now();
+    const SwarmFlightResult result =
+        Checked([&] { return FlySwarm(vehicles, params, setup_->swarm, &sim); });
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+    py::dict out, each;
+    for (size_t i = 0; i < n; ++i) {
+      if (flown[i].users) flown[i].users->RethrowIfFailed();
+      flown[i].record->flight = result.flights[i];
+      flown[i].record->wall_time = wall;
+      py::dict r = Result(*flown[i].record, ToString(result.flights[i].status));
+      r["min_separation"] = result.vehicle_min_separation[i];
+      each[py::str(names_[i])] = r;
+    }
+    out["vehicles"] = each;
+    out["all_reached"] = result.AllReached();
+    out["min_separation"] = result.min_separation;
+    out["closest_pair"] = result.closest_pair;
+    out["flight_time"] = result.time;
+    out["wall_time"] = wall;
+    return out;
+  }
+
+ private:
+  struct Flown {
+    std::unique_ptr<Controller> controller;
+    const PythonController* users = nullptr;
+    std::shared_ptr<FlightRecord> record = std::make_shared<FlightRecord>();
+    std::unique_ptr<CollisionWorld> obstacles;
+  };
+
+  // Vehicle i's controller, reference and loop, the vehicle at the reference's start.
+  void Prepare(size_t i, const py::object& controller, const py::object& trajectory, double t_final,
+               double control_rate, const std::string& choice, Simulation* sim, Flown* flown,
+               SwarmVehicle* v) {
+    const FlightSetup& member = members_[i];
+    bool known = true;
+    if (py::isinstance<Trajectory>(trajectory)) {
+      v->reference = ReferenceOf(trajectory.cast<const Trajectory&>().result.trajectory);
+      if (t_final > 0 && t_final < v->reference.duration) v->reference.duration = t_final;
+    } else {
+      v->reference = PythonReference(trajectory, t_final, &known);
+    }
+    ControllerConfig config = member.controller;
+    config.rate = control_rate;
+    if (py::isinstance<py::str>(controller)) {
+      config.kind = controller.cast<std::string>();
+      flown->controller = Checked([&] {
+        config.Validate();
+        return MakeController(config, member.vehicle);
+      });
+    } else {
+      auto user = std::make_unique<PythonController>(controller, member.vehicle,
+                                                     ParseCommandChoice(choice));
+      flown->users = user.get();
+      flown->controller = std::move(user);
+    }
+    flown->record->setup = std::make_shared<FlightSetup>(member);
+    flown->record->setup->controller = config;
+    flown->record->controller_columns = flown->controller->ReportColumns();
+    flown->obstacles = std::make_unique<CollisionWorld>(
+        setup_->map, CollisionParams{member.vehicle.collision_size, 0.0});
+    const Vec3 first = v->reference.evaluate(0.0, kPosition);
+    PlaceVehicleAtStart(setup_->map, member.vehicle, member.start, first,
+                        &sim->vehicle(static_cast<int>(i)));
+    v->name = names_[i];
+    FlightSetup seeded = member;
+    seeded.seed = setup_->seed + i;
+    AddAirAndSensors(seeded, &v->loop);
+    v->loop.vehicle = &member.vehicle;
+    v->loop.controller = flown->controller.get();
+    v->loop.control_rate = control_rate;
+    v->loop.inner = member.controller.inner;
+    const CollisionWorld* obstacles = flown->obstacles.get();
+    v->loop.clearance = [obstacles](const Vec3& p) { return obstacles->Clearance(p); };
+    FlightRecord* record = flown->record.get();
+    v->loop.telemetry = [record](const TelemetrySample& s) { record->samples.push_back(s); };
+    if (!known) v->loop.completion = Termination::OpenEnd(trajectory, v->reference);
+    record->plan.start.used = first;
+    record->plan.goal.used = v->reference.evaluate(v->reference.duration, kPosition);
+    record->plan.result.path = {first, record->plan.goal.used};
+    record->plan.result.status = PlanStatus::kSolved;
+    record->plan.planner = "given";
+  }
+
+  SetupPtr setup_;
+  std::vector<FlightSetup> members_;
+  std::vector<std::string> names_;
+  std::string xml_;
+};
+
 // What a whole run hands the Python result: the plan, the controller's own columns, every
 // control step.
 class Recorder : public MissionObserver {
@@ -849,6 +984,13 @@ void BindFlight(py::module_& m) {
       .def_property_readonly("vehicle", &SimulatorCore::VehicleParams)
       .def_property_readonly("timestep", &SimulatorCore::Timestep)
       .def_property_readonly("setup", &SimulatorCore::setup);
+
+  py::class_<SwarmSimulatorCore>(m, "SwarmSimulatorCore")
+      .def(py::init<SetupPtr>())
+      .def("run", &SwarmSimulatorCore::Run, py::arg("controllers"), py::arg("trajectories"),
+           py::arg("t_final"), py::arg("control_rate"), py::arg("command_kind"))
+      .def_property_readonly("names", &SwarmSimulatorCore::names)
+      .def_property_readonly("vehicles", &SwarmSimulatorCore::VehicleParams);
 
   py::class_<BuiltinController>(m, "BuiltinController")
       .def(py::init<const SetupPtr&, const std::string&, double>(), py::arg("setup"),

@@ -29,6 +29,7 @@ __all__ = [
     "Map",
     "Scenario",
     "Simulator",
+    "Swarm",
     "Trajectory",
     "builtin_controller",
     "fly",
@@ -90,8 +91,12 @@ def _toml(document):
         if not _is_table(value):
             lines.append(f"{key} = {_toml_value(value)}")
     for key, value in document.items():
-        if _is_table(value):
+        if isinstance(value, dict):
             table(key, value)
+        elif _is_table(value):  # [[key]]: an array of tables
+            for item in value:
+                lines.append(f"[[{key}]]")
+                lines.extend(f"{k} = {_toml_value(v)}" for k, v in item.items())
     return "\n".join(lines) + "\n"
 
 
@@ -174,7 +179,7 @@ def load_scenario(path):
 
 
 def _setup(where, start=None, goal=None, seed=None, caller="aerobox", own=None, extra=(),
-           **tables):
+           vehicles=None, **tables):
     """A set-up from a Map, a Scenario or a path, with scenario keys given as Python arguments
     set over it. Each is checked as `--set` checks a key, and a refused one is named as the
     caller's argument and the key: `wind['turbulence'] (wind.turbulence)`, with the bare keyword
@@ -188,6 +193,8 @@ def _setup(where, start=None, goal=None, seed=None, caller="aerobox", own=None, 
         document = {"name": where.name, "map": os.path.abspath(where.source)}
     else:
         raise TypeError("expected a map or scenario path, an aerobox.Map or an aerobox.Scenario")
+    if vehicles is not None:
+        document["vehicles"] = vehicles
     settings = list(extra)
     for key, value in (("start", start), ("goal", goal), ("seed", seed)):
         if value is not None:
@@ -444,6 +451,90 @@ class Simulator:
         result["vehicle_notes"] = list(self.vehicle_notes)
         result["_record"] = record
         return result
+
+
+class Swarm:
+    """Several vehicles in one map, simulated by MuJoCo in one world at a 1 ms step, each flown by
+    its own controller (RotorPy's contract, per vehicle).
+
+    Swarm(map, vehicles=None, seed=1, **scenario_keys)
+
+    map: as Simulator's (a scenario with [[vehicles]] brings its own).
+    vehicles: a list of dicts, one per vehicle: name, start [m], and optionally vehicle
+        ("tello" or "crazyflie"; default the scenario's [vehicle]) and goal [m] (default the
+        start); None: the scenario's [[vehicles]]. Each rests at its start, hovering when it is
+        in the air. Names are unique; vehicles starting inside each other, or outside the map,
+        raise ValueError naming the vehicle.
+    scenario_keys: as Simulator's tables (flight, wind, aero, sensors, swarm={"downwash": True}).
+
+    Attributes: names (the vehicles', in order), quad_params (one RotorPy dict per vehicle).
+    """
+
+    def __init__(self, map, vehicles=None, seed=1, **scenario_keys):
+        entries = None
+        if vehicles is not None:
+            if not isinstance(vehicles, (list, tuple)) or not vehicles or not all(
+                    isinstance(v, dict) for v in vehicles):
+                raise TypeError("aerobox.Swarm: vehicles: expected a list of dicts (name, start, "
+                                "vehicle, goal)")
+            entries = []
+            for v in vehicles:
+                unknown = set(v) - {"name", "start", "goal", "vehicle"}
+                if unknown:
+                    raise TypeError(f"aerobox.Swarm: vehicles: unknown key {sorted(unknown)[0]!r} "
+                                    "(keys: name, start, goal, vehicle)")
+                entry = {"name": v.get("name"), "start": v.get("start"),
+                         "goal": v.get("goal", v.get("start"))}
+                if "vehicle" in v:
+                    entry["kind"] = v["vehicle"]
+                entries.append({k: val for k, val in entry.items() if val is not None})
+        setup = _setup(map, None, None, seed, "aerobox.Swarm", vehicles=entries, **scenario_keys)
+        self._core = _aerobox.SwarmSimulatorCore(setup)
+        self.map = Map(setup)
+
+    @property
+    def names(self):
+        return list(self._core.names)
+
+    @property
+    def quad_params(self):
+        return list(self._core.vehicles)
+
+    def run(self, controllers, trajectories, t_final=0.0, control_rate=None, command="auto"):
+        """Flies every vehicle's trajectory with its controller, all at once, from their starts.
+
+        controllers, trajectories: one per vehicle, as lists in the vehicles' order or dicts by
+            name; each as Simulator.run takes it (a built-in's name or an object with
+            update(t, state, flat_output); an aerobox Trajectory or an object with update(t)).
+        t_final, control_rate, command: as Simulator.run's (control_rate None: 250 Hz, or the
+            scenario's [controller] rate).
+
+        Returns {"vehicles": {name: Simulator.run's result dict, with min_separation [m] (to
+        the closest other vehicle)}, "all_reached", "min_separation" [m], "closest_pair",
+        "flight_time" [s], "wall_time" [s]}. A vehicle that reaches its goal holds it while the
+        others fly; a contact between two ends both flights as a collision naming the other
+        (collision_with)."""
+        controllers = self._in_order(controllers, "controllers")
+        trajectories = self._in_order(trajectories, "trajectories")
+        if control_rate is None:
+            control_rate = 250.0
+        return self._core.run(controllers, trajectories, float(t_final), float(control_rate),
+                              command)
+
+    def _in_order(self, given, what):
+        names = self.names
+        if isinstance(given, dict):
+            missing = [n for n in names if n not in given]
+            extra = [k for k in given if k not in names]
+            if missing or extra:
+                raise ValueError(f"aerobox.Swarm.run: {what}: "
+                                 + (f"none for {missing[0]!r}" if missing
+                                    else f"{extra[0]!r} is not a vehicle") + f" (vehicles: {names})")
+            return [given[n] for n in names]
+        if not isinstance(given, (list, tuple)) or len(given) != len(names):
+            raise ValueError(f"aerobox.Swarm.run: {what}: expected one per vehicle ({len(names)}), "
+                             "as a list or a dict by name")
+        return list(given)
 
 
 def fly(map, controller=None, start=None, goal=None, goals=None, unknown_fraction=None,
