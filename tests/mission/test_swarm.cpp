@@ -9,7 +9,10 @@
 
 #include "flight_test_util.h"
 #include "mission/swarm.h"
+#include "mission/swarm_mission.h"
+#include "scenario/scenario.h"
 #include "scene/scene_mjcf.h"
+#include "test_support.h"
 
 namespace aerobox {
 namespace {
@@ -69,6 +72,18 @@ struct Fleet {
     }
   }
 };
+
+// A set-up of Crazyflies in the swap scene's room: `vehicles` is [[vehicles]] tables' text.
+FlightSetup RoomSetup(const std::string& vehicles) {
+  const std::string file = (testing::SourceDir() / "scenes" / "swarm_swap" / "x.toml").string();
+  return LoadFlightSetupFromText("map = \"map.json\"\n[vehicle]\nkind = \"crazyflie\"\n" + vehicles,
+                                 file, {});
+}
+
+std::string Vehicle(const char* name, const char* start, const char* goal) {
+  return std::string("[[vehicles]]\nname = \"") + name + "\"\nstart = " + start +
+         "\ngoal = " + goal + "\n";
+}
 
 FlightParams Params() {
   FlightParams params;
@@ -182,6 +197,41 @@ TEST_CASE("a reservation delays a crossing start until the first vehicle has pas
   // a vehicle parked on the other's goal can never be cleared by waiting
   const Reservation parked{Line(Vec3(0, 1, 1), Vec3(0, 1, 1), 0.1), r};
   CHECK_FALSE(ConflictFreeDelay(parked, {first}, params).has_value());
+}
+
+TEST_CASE("planned apart, two crossing vehicles pass with the separation margin") {
+  const FlightSetup setup =
+      RoomSetup(Vehicle("a", "[1, 0, 1]", "[-1, 0, 1]") + Vehicle("b", "[0, 1, 1]", "[0, -1, 1]"));
+  const SwarmMissionResult result = RunSwarm(setup, SwarmParts());
+  REQUIRE(result.flight.flights.size() == 2);
+  CHECK(result.AllReached());
+  CHECK(result.schedule[1].delay + static_cast<double>(!result.schedule[1].detour.empty()) > 0);
+  // the plans keep 2 r + separation; the flights within their tracking errors of the plans
+  const double r = VehicleRadius(setup.vehicles[0].vehicle);
+  const double tracking = result.flight.flights[0].max_error + result.flight.flights[1].max_error;
+  MESSAGE("crossing: " << result.flight.min_separation << " m apart at the closest, "
+                       << 2 * r + setup.swarm.separation << " m planned, tracking within "
+                       << tracking << " m");
+  CHECK(result.flight.min_separation > 2 * r + setup.swarm.separation - tracking);
+  // without planning they meet
+  FlightSetup alone = setup;
+  alone.swarm.planning = "none";
+  const SwarmMissionResult met = RunSwarm(alone, SwarmParts());
+  CHECK(met.flight.flights[0].status == FlightStatus::kCollision);
+  CHECK(met.flight.flights[0].obstacle == "b");
+}
+
+TEST_CASE("a vehicle with no plan clear of the others holds its start and is reported") {
+  // b's goal is within a vehicle of a's: no wait or bend clears it
+  const FlightSetup setup = RoomSetup(Vehicle("a", "[1, 0, 1]", "[-1, 0, 1]") +
+                                      Vehicle("b", "[0, 1, 1]", "[-0.9, 0, 1]"));
+  const SwarmMissionResult result = RunSwarm(setup, SwarmParts());
+  CHECK(result.schedule[0].flies);
+  CHECK_FALSE(result.schedule[1].flies);
+  CHECK(result.schedule[1].note.find("no plan keeps clear") == 0);
+  CHECK(result.flight.flights[0].status == FlightStatus::kReachedGoal);
+  CHECK_FALSE(result.AllReached());
+  CHECK(result.flight.min_separation > 0.5);  // b never left its start
 }
 
 }  // namespace aerobox
