@@ -10,6 +10,8 @@
 #include "common/number_format.h"
 #include "mission/swarm_mission.h"
 #include "mission/telemetry_table.h"
+#include "outputs/report.h"
+#include "scene/scene_mjcf.h"
 #include "telemetry/json_object.h"
 
 namespace aerobox {
@@ -26,7 +28,8 @@ struct SwarmOutputs {
     for (size_t i = 0; i < setup.vehicles.size(); ++i) {
       const std::string own = (fs::path(folder) / setup.vehicles[i].name).string();
       fs::create_directories(own);
-      const FlightSetup member = setup.Member(i);
+      members.push_back(std::make_unique<FlightSetup>(setup.Member(i)));
+      const FlightSetup& member = *members.back();
       const int every =
           options.telemetry_rate > 0
               ? static_cast<int>(std::lround(member.controller.rate / options.telemetry_rate))
@@ -34,14 +37,20 @@ struct SwarmOutputs {
       csv.push_back(
           std::make_unique<CsvOutputs>(own, every, TelemetryExtrasFor(member), options.telemetry));
       parts.observers.push_back({csv.back().get()});
+      if (options.report) {
+        reports.push_back(std::make_unique<ReportOutputs>(folder, member));
+        parts.observers.back().push_back(reports.back().get());
+      }
     }
     if (options.video || options.overview || options.frames_every > 0) {
       pictures.emplace(folder, first, RenderOptionsFor(options), err);
-      parts.observers.front().push_back(&*pictures);
+      parts.world.push_back(&*pictures);
     }
   }
   FlightSetup first;  // the pictures draw its plan
+  std::vector<std::unique_ptr<FlightSetup>> members;
   std::vector<std::unique_ptr<CsvOutputs>> csv;
+  std::vector<std::unique_ptr<ReportOutputs>> reports;  // one per vehicle, one page for all
   std::optional<RenderOutputs> pictures;
   SwarmParts parts;
 };
@@ -101,7 +110,7 @@ JsonObject SwarmSummary(const FlightSetup& setup, const SwarmMissionResult& r) {
 
 // The table: a line per vehicle, then the swarm's separation and makespan.
 std::string SwarmTable(const OutputFolder& output, const FlightSetup& setup,
-                       const SwarmMissionResult& r) {
+                       const FlyOptions& options, const SwarmMissionResult& r) {
   std::ostringstream table;
   table << std::fixed << std::setprecision(3) << "fly " << setup.name << " (seed " << setup.seed
         << ", " << setup.vehicles.size() << " vehicles, planning " << setup.swarm.planning << ")\n";
@@ -126,8 +135,30 @@ std::string SwarmTable(const OutputFolder& output, const FlightSetup& setup,
         << " s for the longest flown alone; " << r.flight.time << " s of flight in "
         << r.flight_wall_time << " s wall\n"
         << "  files       " << output.path() << "/<vehicle>/{path,trajectory,telemetry}.csv, "
-        << "summary.json\n";
+        << "summary.json" << (options.overview ? ", overview.png" : "")
+        << (options.report ? ", report.html" : "") << (options.video ? ", video.mp4" : "") << "\n";
   return table.str();
+}
+
+// report.html of every vehicle (a page that cannot be made is a warning: the flights' own files
+// are written).
+void WriteReport(const std::string& folder, const FlightSetup& setup, const FlyOptions& options,
+                 const SwarmOutputs& outputs, const std::string& summary, std::ostream& err) {
+  std::vector<const ReportOutputs*> reports;
+  std::vector<std::string> names, colours;
+  for (size_t i = 0; i < outputs.reports.size(); ++i) {
+    reports.push_back(outputs.reports[i].get());
+    names.push_back(setup.vehicles[i].name);
+    colours.push_back(SwarmRgba(static_cast<int>(i)));
+  }
+  const std::string command = options.command.empty() ? "aerobox fly " + setup.map.source +
+                                                            " --seed " + std::to_string(setup.seed)
+                                                      : options.command;
+  try {
+    ReportOutputs::WriteSwarm(folder, setup, reports, names, colours, summary, command);
+  } catch (const InputError& e) {
+    err << "aerobox: warning: no report.html: " << e.what() << "\n";
+  }
 }
 
 }  // namespace
@@ -139,9 +170,11 @@ int FlySwarmInto(const OutputFolder& output, const FlightSetup& setup, const Fly
     err << "fly " << setup.name << ": planning " << setup.vehicles.size() << " vehicles\n";
   }
   const SwarmMissionResult result = RunSwarm(setup, outputs.parts);
-  out << SwarmTable(output, setup, result);
-  WriteFileAtomically((fs::path(output.staging()) / "summary.json").string(),
-                      SwarmSummary(setup, result).Text());
+  out << SwarmTable(output, setup, options, result);
+  const std::string summary = SwarmSummary(setup, result).Text();
+  WriteFileAtomically((fs::path(output.staging()) / "summary.json").string(), summary);
+  if (!outputs.reports.empty())
+    WriteReport(output.staging(), setup, options, outputs, summary, err);
   return result.AllReached() ? kExitReachedGoal : kExitFlightFailed;
 }
 

@@ -159,6 +159,7 @@ bool FlightRun::BeforePhysics(long k) {
 
 FlightResult FlightRun::Finish() {
   result_.time = world_->time() - t0_;
+  result_.end_position = world_->Truth().p_W;
   result_.takeoff_time = takeoff_.time();
   for (const FlightObserver* observer : parts_.observers) observer->Finish(&result_);
   world_->ClearAir();

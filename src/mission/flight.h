@@ -86,7 +86,8 @@ struct TelemetrySample {
 
 struct FlightResult {
   FlightStatus status = FlightStatus::kTimeout;
-  double time = 0.0;  // [s] when the flight ended
+  double time = 0.0;                 // [s] when the flight ended
+  Vec3 end_position = Vec3::Zero();  // [m] where the vehicle was then
   // [s] of lifting from the floor to the trajectory's start before its clock started (0: the
   // flight began at the start); the tracking errors count from then
   double takeoff_time = 0.0;

@@ -110,7 +110,8 @@ void MeasureSeparation(const std::vector<SwarmVehicle>& vehicles,
 }  // namespace
 
 SwarmFlightResult FlySwarm(const std::vector<SwarmVehicle>& vehicles, const FlightParams& params,
-                           const SwarmParams& swarm, Simulation* sim) {
+                           const SwarmParams& swarm, Simulation* sim,
+                           const std::function<void(double t)>& after_step) {
   params.Validate();
   swarm.Validate();
   if (static_cast<int>(vehicles.size()) != sim->vehicle_count()) {
@@ -162,6 +163,7 @@ SwarmFlightResult FlySwarm(const std::vector<SwarmVehicle>& vehicles, const Flig
       }
     }
     MeasureSeparation(vehicles, members, sim->time() - t0, &result);
+    if (after_step) after_step(sim->time() - t0);
   }
   for (const FlightResult& f : result.flights) result.time = std::max(result.time, f.time);
   return result;

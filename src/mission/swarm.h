@@ -5,6 +5,7 @@
 // the plans of several vehicles apart (prioritised planning).
 #pragma once
 
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -68,10 +69,12 @@ struct SwarmFlightResult {
 
 // Flies every vehicle from where it is in `sim` (vehicle i is sim's vehicle i) until every
 // flight has ended. A vehicle that reached its goal holds it while the others fly; one whose
-// flight failed has its rotors cut. Throws std::invalid_argument for bad parameters (a
-// vehicle count other than the world's).
+// flight failed has its rotors cut. `after_step`, when given, is called after each step of the
+// world with the flight's time [s]. Throws std::invalid_argument for bad parameters (a vehicle
+// count other than the world's).
 SwarmFlightResult FlySwarm(const std::vector<SwarmVehicle>& vehicles, const FlightParams& params,
-                           const SwarmParams& swarm, Simulation* sim);
+                           const SwarmParams& swarm, Simulation* sim,
+                           const std::function<void(double t)>& after_step = {});
 
 // A reservation in space and time: where a vehicle of `radius` [m] is at each time [s] of the
 // shared clock (before its reference starts: at its start; after: at its end).

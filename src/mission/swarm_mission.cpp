@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 
@@ -153,6 +154,58 @@ struct Fleet {
   std::vector<SwarmVehicle> vehicles;
 };
 
+// Vehicle i's flight among the others: its reference (waiting, or holding its start), its
+// controller and loop; the controller and the loop's clearance world go into `fleet`.
+SwarmVehicle Flight(const FlightSetup& member, const PlanOutcome& plan, const SwarmSchedule& s,
+                    std::uint64_t seed, const std::vector<MissionObserver*>& observers,
+                    Fleet* fleet) {
+  fleet->worlds.push_back(std::make_unique<CollisionWorld>(
+      member.map, CollisionParams{member.vehicle.collision_size, 0.0}));
+  fleet->controllers.push_back(MakeController(member.controller, member.vehicle));
+  SwarmVehicle v;
+  v.name = member.name;
+  v.reference = s.flies ? Delayed(ReferenceOf(plan.trajectory->trajectory), s.delay)
+                        : Parked(plan.start.used);
+  v.loop = LoopFor(member, plan, fleet->controllers.back().get(), *fleet->worlds.back());
+  v.loop.seed = seed;  // each vehicle's own turbulence and sensor noise
+  if (!observers.empty()) {
+    v.loop.telemetry = [observers](const TelemetrySample& sample) {
+      for (MissionObserver* o : observers) o->OnSample(sample);
+    };
+  }
+  return v;
+}
+
+// The world's observers' samples: the first vehicle's true state every control period of `rate`
+// [Hz], through the whole flight.
+std::function<void(double)> WorldSamples(const std::vector<MissionObserver*>& world,
+                                         const Simulation& sim, double rate) {
+  if (world.empty()) return {};
+  return [&world, &sim, period = 1.0 / rate, next = 0.0](double t) mutable {
+    if (t + 1e-9 < next) return;
+    next += period;
+    TelemetrySample sample;
+    sample.t = t;
+    sample.state = sim.vehicle(0).VehicleState();
+    for (MissionObserver* o : world) o->OnSample(sample);
+  };
+}
+
+// What the world's observers are told at the end: the first failure (its vehicle named with
+// what it hit), or the first vehicle's arrival; timed at the last flight's end.
+FlightResult WorldResult(const FlightSetup& setup, const SwarmFlightResult& flight) {
+  FlightResult shown = flight.flights.front();
+  for (size_t i = 0; i < flight.flights.size(); ++i) {
+    const FlightResult& f = flight.flights[i];
+    if (f.status == FlightStatus::kReachedGoal) continue;
+    shown = f;
+    shown.obstacle = setup.vehicles[i].name + (f.obstacle.empty() ? "" : " with " + f.obstacle);
+    break;
+  }
+  shown.time = flight.time;
+  return shown;
+}
+
 }  // namespace
 
 SwarmMissionResult RunSwarm(const FlightSetup& setup, const SwarmParts& parts) {
@@ -175,33 +228,20 @@ SwarmMissionResult RunSwarm(const FlightSetup& setup, const SwarmParts& parts) {
   std::vector<std::string> names;
   for (const SwarmMember& m : setup.vehicles) names.push_back(m.name);
   Simulation sim = Simulation::FromXml(SceneMjcfFor(setup), setup.name + " (scene)", names);
-  for (MissionObserver* o : observers(0)) o->OnScene(sim, {});
+  for (MissionObserver* o : parts.world) o->OnScene(sim, {});
+  for (MissionObserver* o : parts.world) o->OnPlan(result.plans.front());
   Fleet fleet;
   for (size_t i = 0; i < n; ++i) {
-    const FlightSetup& member = members[i];
-    const PlanOutcome& plan = result.plans[i];
-    PlaceVehicleAtStart(setup.map, member.vehicle, member.start, plan.start.used,
+    PlaceVehicleAtStart(setup.map, members[i].vehicle, members[i].start, result.plans[i].start.used,
                         &sim.vehicle(static_cast<int>(i)));
-    fleet.worlds.push_back(std::make_unique<CollisionWorld>(
-        setup.map, CollisionParams{member.vehicle.collision_size, 0.0}));
-    fleet.controllers.push_back(MakeController(member.controller, member.vehicle));
-    SwarmVehicle v;
-    v.name = member.name;
-    const SwarmSchedule& s = result.schedule[i];
-    v.reference = s.flies ? Delayed(ReferenceOf(plan.trajectory->trajectory), s.delay)
-                          : Parked(plan.start.used);
-    v.loop = LoopFor(member, plan, fleet.controllers.back().get(), *fleet.worlds.back());
-    v.loop.seed = setup.seed + i;  // each vehicle's own turbulence and sensor noise
-    if (!observers(i).empty()) {
-      v.loop.telemetry = [&observers, i](const TelemetrySample& sample) {
-        for (MissionObserver* o : observers(i)) o->OnSample(sample);
-      };
-    }
+    fleet.vehicles.push_back(Flight(members[i], result.plans[i], result.schedule[i], setup.seed + i,
+                                    observers(i), &fleet));
     for (MissionObserver* o : observers(i)) o->OnFlightStart(sim, *fleet.controllers.back());
-    fleet.vehicles.push_back(std::move(v));
   }
+  for (MissionObserver* o : parts.world) o->OnFlightStart(sim, *fleet.controllers.front());
   const auto wall = std::chrono::steady_clock::now();
-  result.flight = FlySwarm(fleet.vehicles, setup.flight, setup.swarm, &sim);
+  result.flight = FlySwarm(fleet.vehicles, setup.flight, setup.swarm, &sim,
+                           WorldSamples(parts.world, sim, members.front().controller.rate));
   result.flight_wall_time =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall).count();
   for (size_t i = 0; i < n; ++i) {
@@ -209,6 +249,7 @@ SwarmMissionResult RunSwarm(const FlightSetup& setup, const SwarmParts& parts) {
     if (s.flies) result.makespan = std::max(result.makespan, s.delay + s.duration);
     for (MissionObserver* o : observers(i)) o->OnFlightEnd(sim, result.flight.flights[i]);
   }
+  for (MissionObserver* o : parts.world) o->OnFlightEnd(sim, WorldResult(setup, result.flight));
   return result;
 }
 

@@ -33,9 +33,14 @@ struct SwarmMissionResult {
 };
 
 // One list of observers per vehicle (fewer lists: the rest unobserved), each told of its own
-// vehicle as MissionObserver says (OnScene only to the first vehicle's, with the whole world).
+// vehicle's plan, flight start, samples and end as MissionObserver says; and the world's (its
+// pictures), told of the scene, the first vehicle's plan and flight start, then the first
+// vehicle's state every control period of its rate through the whole flight (it goes on while
+// that vehicle holds its goal), and at the end the result of the first vehicle that failed (or
+// the first's), timed at the last flight's end.
 struct SwarmParts {
   std::vector<std::vector<MissionObserver*>> observers;
+  std::vector<MissionObserver*> world;
 };
 
 // Plans each vehicle (PlanFlight of FlightSetup::Member), schedules them apart (prioritised: in

@@ -262,12 +262,17 @@ void RenderOutputs::OnSample(const TelemetrySample& s) {
   const bool far =
       options_.camera.kind == CameraKind::kOverview || options_.camera.kind == CameraKind::kTop;
   overlay_.vehicle = far ? std::optional<Vec3>(s.state.p_W) : std::nullopt;
+  overlay_.others.clear();
+  for (int i = 1; far && i < sim_->vehicle_count(); ++i) {
+    overlay_.others.push_back(sim_->vehicle(i).VehicleState().p_W);
+  }
   Frame(Hud(s.t, s.state, setup_.map.bounds.min.z(), "flying", overlay_.wind_W), options_.camera,
         overlay_);
   if (inset_stale_) depth_inset_ = ColourDepth(depth_frame_, setup_.sensing.range);
   inset_stale_ = false;
   DrawInset(depth_inset_, &image_);
   overlay_.vehicle.reset();
+  overlay_.others.clear();
   if (png_due) {
     char name[32];
     std::snprintf(name, sizeof(name), "frame_%06d.png", png_frames_++);
@@ -293,7 +298,7 @@ void RenderOutputs::OnFlightEnd(const Simulation& sim, const FlightResult& resul
           "black: flown   green: start   red: goal   inset: from above") +
       (setup_.HasUnknown() ? "\nfaint: never seen   grey: paths given up when replanning" : "");
   if (result.status == FlightStatus::kCollision) {
-    overview.collision = sim.VehicleState().p_W;
+    overview.collision = result.end_position;
     overview.legend += "\nmagenta: where it hit " + result.obstacle;
   }
   Frame(Hud(result.time, sim.VehicleState(), setup_.map.bounds.min.z(), ToString(result.status)),

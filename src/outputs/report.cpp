@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "outputs/files.h"
 #include "perception/occupancy_grid.h"
@@ -147,10 +148,10 @@ void ReportOutputs::OnSample(const TelemetrySample& sample) {
   for (size_t c = 0; c < column_index_.size(); ++c) columns_[c].push_back(row[column_index_[c]]);
 }
 
-void ReportOutputs::OnFlightEnd(const Simulation& sim, const FlightResult& result) {
+void ReportOutputs::OnFlightEnd(const Simulation&, const FlightResult& result) {
   flown_ = true;
   result_ = result;
-  end_position_ = sim.VehicleState().p_W;
+  end_position_ = result.end_position;
 }
 
 void ReportOutputs::OnDepthFrame(double t, const DepthImage&, const OccupancyGrid& map) {
@@ -164,9 +165,7 @@ void ReportOutputs::OnDiscovery(const std::vector<double>& revealed_at,
   if (replans.size() != replans_.size()) replans_ = replans;
 }
 
-std::string ReportOutputs::Write(const std::string& summary_json, const std::string& command,
-                                 const ReportScripts& scripts) const {
-  const Map& map = setup_.map;
+std::string ReportOutputs::VehicleJson() const {
   Json failure = nullptr;
   if (flown_ && result_.status != FlightStatus::kReachedGoal) {
     failure = {{"status", ToString(result_.status)},
@@ -178,28 +177,76 @@ std::string ReportOutputs::Write(const std::string& summary_json, const std::str
   for (size_t c = 0; c < column_names_.size(); ++c) {
     telemetry[column_names_[c]] = Numbers(columns_[c], column_names_[c] == "t" ? 3 : 4);
   }
-  const Json data = {{"name", setup_.name},
-                     {"command", command},
-                     {"summary", Json::parse(summary_json)},
-                     {"plan", Json::parse(plan_json_)},
-                     {"bounds", Json::array({Point(map.bounds.min), Point(map.bounds.max)})},
-                     {"boxes", Boxes(setup_, revealed_at_)},
-                     {"replans", Replans(replans_)},
-                     {"occupancy", OccupancySnapshots(occupied_, setup_.sensing.map.resolution)},
-                     {"vehicle",
-                      {{"size", Point(setup_.vehicle.collision_size)},
-                       {"max_thrust", Number(setup_.vehicle.MaxRotorThrust())}}},
-                     {"failure", failure},
-                     {"telemetry", telemetry}};
+  const Json data = {
+      {"plan", Json::parse(plan_json_)}, {"telemetry", telemetry}, {"failure", failure}};
+  return data.dump();
+}
+
+namespace {
+
+// The page's data besides the vehicles' own, and the page written from it.
+Json PageData(const FlightSetup& setup, const std::string& summary_json, const std::string& command,
+              const std::vector<double>& revealed_at, const std::vector<ReplanEvent>& replans,
+              const std::vector<std::pair<double, std::vector<Aabb>>>& occupied) {
+  const Map& map = setup.map;
+  return {{"name", setup.name},
+          {"command", command},
+          {"summary", Json::parse(summary_json)},
+          {"bounds", Json::array({Point(map.bounds.min), Point(map.bounds.max)})},
+          {"boxes", Boxes(setup, revealed_at)},
+          {"replans", Replans(replans)},
+          {"occupancy", OccupancySnapshots(occupied, setup.sensing.map.resolution)},
+          {"vehicle",
+           {{"size", Point(setup.vehicle.collision_size)},
+            {"max_thrust", Number(setup.vehicle.MaxRotorThrust())}}}};
+}
+
+std::string WritePage(const std::string& folder, const std::string& title, const Json& data,
+                      const ReportScripts& scripts) {
   PageParts parts;
-  parts.title = setup_.name;
+  parts.title = title;
   parts.scripts = {{"/*AEROBOX_THREE*/", ReadPageScript(scripts.three)},
                    {"/*AEROBOX_ORBIT_CONTROLS*/", ReadPageScript(scripts.orbit_controls)},
                    {"/*AEROBOX_CHART*/", ReadPageScript(scripts.chart)}};
   parts.data_json = data.dump(-1, ' ', false, Json::error_handler_t::replace);
-  const std::string path = (fs::path(folder_) / "report.html").string();
+  const std::string path = (fs::path(folder) / "report.html").string();
   WriteFileAtomically(path, FillPage(ReportPageTemplate(), parts));
   return path;
+}
+
+}  // namespace
+
+std::string ReportOutputs::Write(const std::string& summary_json, const std::string& command,
+                                 const ReportScripts& scripts) const {
+  Json data = PageData(setup_, summary_json, command, revealed_at_, replans_, occupied_);
+  data.update(Json::parse(VehicleJson()));
+  return WritePage(folder_, setup_.name, data, scripts);
+}
+
+std::string ReportOutputs::WriteSwarm(const std::string& folder, const FlightSetup& setup,
+                                      const std::vector<const ReportOutputs*>& vehicles,
+                                      const std::vector<std::string>& names,
+                                      const std::vector<std::string>& colours,
+                                      const std::string& summary_json, const std::string& command,
+                                      const ReportScripts& scripts) {
+  Json data = PageData(setup, summary_json, command, {}, {}, {});
+  Json list = Json::array();
+  for (size_t i = 0; i < vehicles.size(); ++i) {
+    Json v = Json::parse(vehicles[i]->VehicleJson());
+    v["name"] = names.at(i);
+    std::istringstream rgba(colours.at(i));
+    double r = 0, g = 0, b = 0;
+    rgba >> r >> g >> b;
+    v["rgb"] = Json::array({r, g, b});
+    v["size"] = Point(vehicles[i]->setup_.vehicle.collision_size);
+    list.push_back(v);
+  }
+  if (!list.empty())
+    data.update({{"plan", list[0]["plan"]},
+                 {"telemetry", list[0]["telemetry"]},
+                 {"failure", list[0]["failure"]}});
+  data["vehicles"] = list;
+  return WritePage(folder, setup.name, data, scripts);
 }
 
 }  // namespace aerobox

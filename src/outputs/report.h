@@ -33,7 +33,21 @@ class ReportOutputs : public MissionObserver {
   std::string Write(const std::string& summary_json, const std::string& command,
                     const ReportScripts& scripts = ReportScripts()) const;
 
+  // The page of several vehicles in one world, each vehicle's run collected by its own
+  // ReportOutputs (`vehicles`, named by `names`, drawn in `colours`, "r g b a"): the first's data
+  // in the places a lone vehicle's go, every vehicle's in the page's "vehicles" list, which the
+  // page draws in their colours and offers to the charts. Throws as Write does.
+  static std::string WriteSwarm(const std::string& folder, const FlightSetup& setup,
+                                const std::vector<const ReportOutputs*>& vehicles,
+                                const std::vector<std::string>& names,
+                                const std::vector<std::string>& colours,
+                                const std::string& summary_json, const std::string& command,
+                                const ReportScripts& scripts = ReportScripts());
+
  private:
+  // This run's part of the page's data, as JSON text: "plan", "telemetry", "failure".
+  std::string VehicleJson() const;
+
   std::string folder_;
   const FlightSetup& setup_;
   std::string plan_json_ = "{}";

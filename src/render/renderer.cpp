@@ -141,11 +141,12 @@ struct Renderer::Impl {
     if (overlay.collision) AddSphere(*overlay.collision, 2 * scale, kCollision);
     static const float kVehicle[4] = {0.05f, 0.05f, 0.05f, 0.7f};
     if (overlay.vehicle) AddSphere(*overlay.vehicle, 3 * scale, kVehicle);
+    for (const Vec3& other : overlay.others) AddSphere(other, 3 * scale, kVehicle);
   }
 
   // The chase camera's distance: pulled in along the line of sight when a map box (geom
   // group 0) stands between the vehicle and the camera, so the view is never a wall's inside.
-  double ChaseDistance(double azimuth_deg, double elevation_deg) const {
+  double ChaseDistance(double azimuth_deg, double elevation_deg, double wanted) const {
     const double az = azimuth_deg * M_PI / 180.0;
     const double el = elevation_deg * M_PI / 180.0;
     // a free camera looks along (cos el cos az, cos el sin az, sin el) at `lookat`
@@ -158,8 +159,33 @@ struct Renderer::Impl {
         mj_ray(sim->model(), sim->data(), from, back, groups, 1, vehicle_body, &geom);
     constexpr double kGap = 0.05;     // [m] kept in front of the wall
     constexpr double kClosest = 0.2;  // [m] from the vehicle, at the nearest
-    if (hit < 0 || hit >= settings.chase_distance + kGap) return settings.chase_distance;
+    if (hit < 0 || hit >= wanted + kGap) return wanted;
     return std::max(kClosest, hit - kGap);
+  }
+
+  // What the chase camera follows: the vehicle, or the middle of several, their mean velocity,
+  // and the radius around the middle that holds them all [m].
+  struct Followed {
+    Vec3 p_W, v_W;
+    double radius;
+  };
+  Followed Follow() const {
+    const int n = sim->vehicle_count();
+    if (n == 1) {
+      const State s = sim->VehicleState();
+      return {s.p_W, s.v_W, 0.0};
+    }
+    Followed group{Vec3::Zero(), Vec3::Zero(), 0.0};
+    for (int i = 0; i < n; ++i) {
+      const State s = sim->vehicle(i).VehicleState();
+      group.p_W += s.p_W / n;
+      group.v_W += s.v_W / n;
+    }
+    for (int i = 0; i < n; ++i) {
+      group.radius =
+          std::max(group.radius, (sim->vehicle(i).VehicleState().p_W - group.p_W).norm());
+    }
+    return group;
   }
 
   mjvCamera Camera(const CameraSpec& spec) {
@@ -188,8 +214,9 @@ struct Renderer::Impl {
         camera.distance = 2.4 * m->stat.extent;
         break;
       case CameraKind::kChase: {
-        // behind the direction of travel, above, following smoothly
-        const State state = sim->VehicleState();
+        // behind the direction of travel, above, following smoothly; several vehicles: their
+        // middle, far enough back to hold them all
+        const Followed state = Follow();
         const Vec3 v = state.v_W;
         double heading = chase_azimuth;
         if (v.head<2>().norm() > 0.3) heading = std::atan2(v.y(), v.x()) * 180.0 / M_PI;
@@ -211,7 +238,8 @@ struct Renderer::Impl {
         for (int k = 0; k < 3; ++k) camera.lookat[k] = chase_lookat[k];
         camera.azimuth = chase_azimuth;
         camera.elevation = -22.0;
-        camera.distance = ChaseDistance(camera.azimuth, camera.elevation);
+        camera.distance = ChaseDistance(camera.azimuth, camera.elevation,
+                                        std::max(settings.chase_distance, 2.6 * state.radius));
         last_chase_distance = camera.distance;
         break;
       }

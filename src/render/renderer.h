@@ -64,7 +64,8 @@ struct Overlay {
   // the vehicle [m], marked for a camera that sees the whole map, from which a 10 cm vehicle
   // is a pixel or two (the overview and top cameras)
   std::optional<Vec3> vehicle;
-  std::string text;  // top-left text, lines separated by '\n'
+  std::vector<Vec3> others;  // [m] the other vehicles of a world of several, marked alike
+  std::string text;          // top-left text, lines separated by '\n'
   // the planner's tree, as (node, parent) edges in the order they were added; the first
   // `tree_shown` are drawn (at most kMaxTreeEdges of them, evenly chosen)
   std::vector<std::pair<Vec3, Vec3>> tree;

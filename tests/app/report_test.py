@@ -8,7 +8,8 @@ file:// and runs the page's self-test (report.html#selftest=T), read back with -
 - the slider at a time puts the vehicle where telemetry.csv says;
 - a 25 s flight's page stays under 3 MB;
 - the page of a collision shows the failure and marks where it happened;
-- a sweep writes one page of its own.
+- a sweep writes one page of its own;
+- several vehicles: every one drawn where its telemetry.csv says, the charts of the one chosen.
 
 Usage: report_test.py AEROBOX_BINARY SOURCE_DIR"""
 import csv
@@ -34,10 +35,11 @@ def fly(out, *args):
                           check=False)
 
 
-def selftest(page, t, profile):
-    """The page's self-test at time t, and chromium's console lines."""
+def selftest(page, t, profile, extra=""):
+    """The page's self-test at time t (`extra`: more of the address's fragment), and chromium's
+    console lines."""
     done = subprocess.run(
-        CHROMIUM + [f"--user-data-dir={profile}", "--dump-dom", f"file://{page}#selftest={t}"],
+        CHROMIUM + [f"--user-data-dir={profile}", "--dump-dom", f"file://{page}#selftest={t}{extra}"],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=120, check=False)
     found = re.search(r'<pre id="selftest">([^<]*)</pre>', done.stdout)
     if not found:
@@ -82,6 +84,10 @@ class Report(unittest.TestCase):
         assert done.returncode == 0, done.stderr
         cls.windy = os.path.join(cls.work.name, "windy")
         done = fly(cls.windy, os.path.join(TOP, "scenes/windy_window/scenario.toml"))
+        assert done.returncode == 0, done.stderr
+        # eight vehicles in one world: one page for all
+        cls.swarm = os.path.join(cls.work.name, "swarm")
+        done = fly(cls.swarm, os.path.join(TOP, "scenes/swarm_swap/scenario.toml"))
         assert done.returncode == 0, done.stderr
         # a sweep of two runs: its own page
         cls.sweep = os.path.join(cls.work.name, "sweep")
@@ -190,6 +196,29 @@ class Report(unittest.TestCase):
         # a flight without a depth camera has none
         result, _ = selftest(os.path.join(self.slow, "report.html"), 5.0, self.profile)
         self.assertEqual(result["occupied_boxes"], 0)
+
+    def test_several_vehicles_each_where_its_telemetry_says_and_charts_per_vehicle(self):
+        page = os.path.join(self.swarm, "report.html")
+        with open(os.path.join(self.swarm, "summary.json"), encoding="utf-8") as f:
+            names = [v["name"] for v in json.load(f)["vehicles"]]
+        self.assertEqual(len(names), 8)
+        for t in (0.0, 1.1):
+            result, console = selftest(page, t, self.profile)
+            self.assert_clean(result, console)
+            self.assertEqual(result["vehicles"], 8)
+            self.assertGreater(result["variance"], 100.0, "a blank canvas")
+            for name, got in zip(names, result["vehicle_positions"]):
+                expected = telemetry_at(os.path.join(self.swarm, name, "telemetry.csv"), t)
+                for g, w in zip(got, expected):
+                    self.assertAlmostEqual(g, w, delta=0.01, msg=f"{name} at t = {t} s")
+            self.assertEqual(result["charts_of"], names[0])
+        # the charts of the third vehicle: its x at the end
+        result, console = selftest(page, 1.0, self.profile, "&vehicle=2")
+        self.assert_clean(result, console)
+        self.assertEqual(result["charts_of"], names[2])
+        with open(os.path.join(self.swarm, names[2], "telemetry.csv"), encoding="utf-8") as f:
+            rows = list(csv.DictReader(f))
+        self.assertAlmostEqual(result["charts_first_x"]["y"], float(rows[-1]["x"]), delta=1e-3)
 
     def test_a_sweep_has_one_page(self):
         result, console = selftest(os.path.join(self.sweep, "report.html"), 0, self.profile)
