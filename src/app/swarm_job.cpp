@@ -76,6 +76,7 @@ JsonObject VehicleSummary(const SwarmMember& m, const SwarmSchedule& s, const Pl
       .Add("min_clearance_m", f.min_clearance)
       .Add("min_separation_m", separation)
       .Add("distance_m", f.distance)
+      .Add("replans", f.replans)
       .Add("top_speed_mps", f.top_speed);
   return v;
 }
@@ -126,6 +127,7 @@ std::string SwarmTable(const OutputFolder& output, const FlightSetup& setup,
     if (!f.obstacle.empty()) table << ", hit " << f.obstacle;
     if (s.delay > 0) table << "; waited " << s.delay << " s";
     if (!s.detour.empty()) table << "; bent " << s.detour;
+    if (f.replans > 0) table << "; replanned " << f.replans << " time(s)";
     table << "; tracking RMS " << f.rms_error << " m, closest vehicle "
           << r.flight.vehicle_min_separation[i] << " m\n";
   }

@@ -53,14 +53,7 @@ constexpr std::chrono::milliseconds kSceneWaitPoll{10};
 PlanOutcome PlanWhileSceneLoads(const FlightSetup& setup, std::future<void>* scene) {
   PlanOutcome plan;
   try {
-    // the planner knows only the boxes that are not unknown
-    if (setup.HasUnknown()) {
-      FlightSetup known = setup;
-      known.map = KnownMap(setup.map, setup.unknown);
-      plan = PlanFlight(known);
-    } else {
-      plan = PlanFlight(setup);
-    }
+    plan = PlanFlight(Known(setup));  // the planner knows only the boxes that are not unknown
   } catch (const Interrupted& stop) {
     // Ctrl-C while the scene thread is still inside MuJoCo's GL set-up (mjr_makeContext: about
     // 0.3 s of texture set-up on a CPU renderer), which nothing can stop: rather than wait for
@@ -82,8 +75,21 @@ PlanOutcome PlanWhileSceneLoads(const FlightSetup& setup, std::future<void>* sce
   return plan;
 }
 
-// Boxes found in flight: the replanner that senses them and replans around them, through the
-// flight's planner (a given path cannot be replanned by itself: RRT* then).
+// What the replanner found: its replans, when and how far away each box was first seen, the
+// occupancy map.
+void TakeDiscovery(const Replanner& replanner, MissionResult* result) {
+  result->replans = replanner.events();
+  result->revealed_at = replanner.revealed_at();
+  result->revealed_distance = replanner.revealed_distance();
+  if (replanner.occupancy()) {
+    result->occupancy = MissionResult::Occupancy{replanner.occupancy(), replanner.cost()};
+  }
+  result->unknown_boxes = replanner.unknown_count();
+  result->revealed_boxes = replanner.revealed_count();
+}
+
+}  // namespace
+
 void AddReplanner(const FlightSetup& setup, const PlanOutcome& plan,
                   std::optional<Replanner>* replanner, FlightLoop* loop) {
   std::vector<Vec3> goals = loop->goals;
@@ -109,20 +115,12 @@ void AddReplanner(const FlightSetup& setup, const PlanOutcome& plan,
   }
 }
 
-// What the replanner found: its replans, when and how far away each box was first seen, the
-// occupancy map.
-void TakeDiscovery(const Replanner& replanner, MissionResult* result) {
-  result->replans = replanner.events();
-  result->revealed_at = replanner.revealed_at();
-  result->revealed_distance = replanner.revealed_distance();
-  if (replanner.occupancy()) {
-    result->occupancy = MissionResult::Occupancy{replanner.occupancy(), replanner.cost()};
-  }
-  result->unknown_boxes = replanner.unknown_count();
-  result->revealed_boxes = replanner.revealed_count();
+FlightSetup Known(const FlightSetup& setup) {
+  if (!setup.HasUnknown()) return setup;
+  FlightSetup known = setup;
+  known.map = KnownMap(setup.map, setup.unknown);
+  return known;
 }
-
-}  // namespace
 
 FlightLoop LoopFor(const FlightSetup& setup, const PlanOutcome& plan, Controller* controller,
                    const CollisionWorld& world) {

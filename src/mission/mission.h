@@ -95,6 +95,16 @@ inline constexpr size_t kCullAboveBoxes = 500;
 FlightLoop LoopFor(const FlightSetup& setup, const PlanOutcome& plan, Controller* controller,
                    const CollisionWorld& world);
 
+// Boxes found in flight (setup.HasUnknown()): a replanner, made into `replanner`, that senses
+// them and replans around them through the flight's planner (a given path cannot be replanned
+// by itself: RRT* then), as the loop's update_reference (and map_size with a depth camera).
+void AddReplanner(const FlightSetup& setup, const PlanOutcome& plan,
+                  std::optional<Replanner>* replanner, FlightLoop* loop);
+
+// The set-up as the vehicle knows its map before take-off: without its unknown boxes (what it
+// plans on).
+FlightSetup Known(const FlightSetup& setup);
+
 // Plans, solves, loads the scene, places the vehicle and flies. Throws InputError for unusable
 // endpoints and std::invalid_argument for bad settings; a missing path, trajectory or a failed
 // flight is a status.

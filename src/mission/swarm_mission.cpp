@@ -151,6 +151,8 @@ void Schedule(const FlightSetup& setup, const std::vector<FlightSetup>& members,
 struct Fleet {
   std::vector<std::unique_ptr<CollisionWorld>> worlds;
   std::vector<std::unique_ptr<Controller>> controllers;
+  // with unknown boxes, each vehicle's own replanner (on the heap: the loops point at them)
+  std::vector<std::unique_ptr<std::optional<Replanner>>> replanners;
   std::vector<SwarmVehicle> vehicles;
 };
 
@@ -168,6 +170,10 @@ SwarmVehicle Flight(const FlightSetup& member, const PlanOutcome& plan, const Sw
                         : Parked(plan.start.used);
   v.loop = LoopFor(member, plan, fleet->controllers.back().get(), *fleet->worlds.back());
   v.loop.seed = seed;  // each vehicle's own turbulence and sensor noise
+  if (member.HasUnknown() && s.flies) {
+    fleet->replanners.push_back(std::make_unique<std::optional<Replanner>>());
+    AddReplanner(member, plan, fleet->replanners.back().get(), &v.loop);
+  }
   if (!observers.empty()) {
     v.loop.telemetry = [observers](const TelemetrySample& sample) {
       for (MissionObserver* o : observers) o->OnSample(sample);
@@ -216,11 +222,14 @@ SwarmMissionResult RunSwarm(const FlightSetup& setup, const SwarmParts& parts) {
   const auto observers = [&](size_t i) -> const std::vector<MissionObserver*>& {
     return i < parts.observers.size() ? parts.observers[i] : kNone;
   };
-  std::vector<FlightSetup> members;
-  for (size_t i = 0; i < n; ++i) members.push_back(setup.Member(i));
+  std::vector<FlightSetup> members, known;  // known: as each plans, without unknown boxes
+  for (size_t i = 0; i < n; ++i) {
+    members.push_back(setup.Member(i));
+    known.push_back(Known(members.back()));
+  }
   SwarmMissionResult result;
-  for (const FlightSetup& member : members) result.plans.push_back(PlanFlight(member));
-  Schedule(setup, members, &result);
+  for (const FlightSetup& member : known) result.plans.push_back(PlanFlight(member));
+  Schedule(setup, known, &result);
   for (size_t i = 0; i < n; ++i) {
     for (MissionObserver* o : observers(i)) o->OnPlan(result.plans[i]);
   }

@@ -234,4 +234,20 @@ TEST_CASE("a vehicle with no plan clear of the others holds its start and is rep
   CHECK(result.flight.min_separation > 0.5);  // b never left its start
 }
 
+TEST_CASE("with walls unknown until seen each vehicle replans on its own") {
+  const std::string file = (testing::SourceDir() / "scenes" / "maze" / "x.toml").string();
+  const FlightSetup setup = LoadFlightSetupFromText(
+      "map = \"map.json\"\nunknown_fraction = 0.3\nseed = 4\n"
+      "[sensing]\nkind = \"omni\"\nrange = 3.0\nrate = 25.0\n" +
+          Vehicle("a", "[1.0, 5.0, 1.5]", "[9.0, 7.0, 1.5]") +
+          Vehicle("b", "[9.0, 1.0, 1.5]", "[1.5, 3.0, 1.5]"),
+      file, {});
+  REQUIRE(setup.HasUnknown());
+  const SwarmMissionResult result = RunSwarm(setup, SwarmParts());
+  CHECK(result.AllReached());
+  // planned without the unknown walls, so at least one vehicle met one and replanned
+  CHECK(result.flight.flights[0].replans + result.flight.flights[1].replans > 0);
+  for (const FlightResult& f : result.flight.flights) CHECK(f.min_clearance > 0);
+}
+
 }  // namespace aerobox
