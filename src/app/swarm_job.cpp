@@ -77,6 +77,8 @@ JsonObject VehicleSummary(const SwarmMember& m, const SwarmSchedule& s, const Pl
       .Add("min_separation_m", separation)
       .Add("distance_m", f.distance)
       .Add("replans", f.replans)
+      .Add("goals_reached",
+           static_cast<int>(f.goal_times.size()) + (f.status == FlightStatus::kReachedGoal ? 1 : 0))
       .Add("top_speed_mps", f.top_speed);
   return v;
 }

@@ -48,7 +48,7 @@ FlightSetup FlightSetup::Member(size_t i) const {
   one.goal = m.goal;
   one.goal_origin = "scenario";
   one.goal_where = m.where;
-  one.via.clear();
+  one.via = m.via;
   return one;
 }
 

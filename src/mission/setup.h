@@ -33,6 +33,7 @@ struct SwarmMember {
   ControllerConfig controller;
   Vec3 start = Vec3::Zero();  // [m]
   Vec3 goal = Vec3::Zero();   // [m]
+  std::vector<Vec3> via;      // [m] a mission's goals before `goal`, in order
   SourceLocation where;       // its table, for messages
 };
 

@@ -538,10 +538,12 @@ void VehicleEntry::Describe(Archive& a) {
   a.Text({"controller", "", "its controller's kind (empty: [controller]'s)"}, &controller);
   a.Number({"rate", "Hz", "its controller's rate (0: [controller]'s)"}, &rate, 0, 1000);
   a.Vector({"start", "m", "where it starts, [x, y, z] (required)"}, &start, -1e6, 1e6);
-  a.Vector({"goal", "m", "where it ends, [x, y, z] (required)"}, &goal, -1e6, 1e6);
+  a.Vector({"goal", "m", "where it ends, [x, y, z] (this, or goals)"}, &goal, -1e6, 1e6);
 }
 
 namespace {
+
+void ReadGoals(const toml::node& node, const std::string& file, Scenario* s);
 
 // [[vehicles]]: an array of tables, each read through VehicleEntry's Describe.
 void ReadVehicleEntries(const toml::node& node, const std::string& file, Scenario* s) {
@@ -557,27 +559,41 @@ void ReadVehicleEntries(const toml::node& node, const std::string& file, Scenari
     }
     VehicleEntry entry;
     entry.line = LineOf(item);
-    ReadFields(*table, file, "vehicles.", &entry);
-    for (const char* key : {"name", "start", "goal"}) {
+    ReadFields(*table, file, "vehicles.", &entry, {{}, {"goals", "vehicle"}, {}, ""});
+    for (const char* key : {"name", "start"}) {
       if (table->get(key) == nullptr) {
         throw InputError({file, entry.line}, std::string("vehicles.") + key,
                          "missing key: every [[vehicles]] table needs name, start and goal");
       }
     }
     entry.name = FolderName(*table->get("name"), file, "vehicles.name");
+    const toml::node* goals = table->get("goals");
+    if ((goals != nullptr) == (table->get("goal") != nullptr)) {
+      throw InputError({file, goals ? LineOf(*goals) : entry.line},
+                       "vehicles." + entry.name + ".goal",
+                       goals ? "give goal or goals, not both" : "missing key: give goal or goals");
+    }
+    if (goals != nullptr) {
+      Scenario mission;  // goals as the top level reads them: the last is the goal
+      ReadGoals(*goals, file, &mission);
+      entry.via = mission.via;
+      entry.goal = *mission.goal;
+    }
     s->vehicle_entries.push_back(entry);
   }
 }
 
 // A [[vehicles]] entry as a vehicle of the swarm: the scenario's vehicle and controller with
 // the entry's kind, controller and rate.
-SwarmMember MemberOf(const VehicleEntry& entry, const Scenario& scenario, const std::string& file) {
+SwarmMember MemberOf(const VehicleEntry& entry, const toml::table* vehicle_table,
+                     const Scenario& scenario, const std::string& file) {
   const SourceLocation at{file, entry.line};
   const std::string key = "vehicles." + entry.name + ".";
   SwarmMember m;
   m.name = entry.name;
   m.start = entry.start;
   m.goal = entry.goal;
+  m.via = entry.via;
   m.where = at;
   m.vehicle_kind = scenario.vehicle_kind;
   m.vehicle = scenario.vehicle;
@@ -589,6 +605,14 @@ SwarmMember MemberOf(const VehicleEntry& entry, const Scenario& scenario, const 
     }
     m.vehicle_kind = entry.kind;
     m.vehicle = *builtin;
+  }
+  if (vehicle_table != nullptr) {  // [vehicles.vehicle]: its kind and values, as [vehicle]'s
+    Scenario own;
+    own.vehicle_kind = m.vehicle_kind;
+    own.vehicle = m.vehicle;
+    ReadVehicle(*vehicle_table, file, LineOf(*vehicle_table), &own);
+    m.vehicle_kind = own.vehicle_kind;
+    m.vehicle = own.vehicle;
   }
   m.controller = scenario.controller;
   if (!entry.controller.empty()) {
@@ -613,7 +637,8 @@ SwarmMember MemberOf(const VehicleEntry& entry, const Scenario& scenario, const 
 
 // The entries as vehicles, each name once; the first's start and goal stand for the scenario's
 // when it gives none (the scene's camera, `aerobox check`).
-void ResolveVehicles(const std::string& file, Scenario* scenario) {
+void ResolveVehicles(const toml::table& table, const std::string& file, Scenario* scenario) {
+  const toml::array* tables = table.get_as<toml::array>("vehicles");
   for (size_t i = 0; i < scenario->vehicle_entries.size(); ++i) {
     const VehicleEntry& entry = scenario->vehicle_entries[i];
     for (size_t j = 0; j < i; ++j) {
@@ -623,7 +648,14 @@ void ResolveVehicles(const std::string& file, Scenario* scenario) {
                              std::to_string(scenario->vehicle_entries[j].line));
       }
     }
-    scenario->vehicles.push_back(MemberOf(entry, *scenario, file));
+    const toml::table* own = (*tables)[i].as_table();
+    const toml::node* vehicle = own != nullptr ? own->get("vehicle") : nullptr;
+    if (vehicle != nullptr && vehicle->as_table() == nullptr) {
+      throw InputError({file, LineOf(*vehicle)}, "vehicles." + entry.name + ".vehicle",
+                       "expected a table [vehicles.vehicle] of the vehicle's values");
+    }
+    scenario->vehicles.push_back(
+        MemberOf(entry, vehicle ? vehicle->as_table() : nullptr, *scenario, file));
   }
   if (scenario->vehicles.empty()) return;
   const VehicleEntry& first = scenario->vehicle_entries.front();
@@ -785,7 +817,7 @@ Scenario ScenarioFromTable(const toml::table& table, const std::string& file) {
     throw InputError({file, LineOf(*table.get("goal"))}, "goal", "give goal or goals, not both");
   }
   for (const auto& [key, node] : table) ReadTopLevel(std::string(key.str()), node, file, &scenario);
-  ResolveVehicles(file, &scenario);
+  ResolveVehicles(table, file, &scenario);
   // a missing key belongs to the top-level table, which starts at line 1
   if (scenario.map_path.empty()) throw InputError({file, 1}, "map", "missing key 'map'");
   // a speed cap within the vehicle's own top speed (the schema's range is the fastest
@@ -991,7 +1023,11 @@ void CheckVehicles(const FlightSetup& setup) {
   const auto& vehicles = setup.vehicles;
   for (size_t i = 0; i < vehicles.size(); ++i) {
     const SwarmMember& m = vehicles[i];
-    for (const auto& [point, key] : {std::pair{m.start, "start"}, std::pair{m.goal, "goal"}}) {
+    std::vector<std::pair<Vec3, std::string>> points = {{m.start, "start"}, {m.goal, "goal"}};
+    for (size_t k = 0; k < m.via.size(); ++k) {
+      points.push_back({m.via[k], "goals[" + std::to_string(k) + "]"});
+    }
+    for (const auto& [point, key] : points) {
       if (!setup.map.bounds.Contains(point)) {
         throw InputError(m.where, "vehicles." + m.name + "." + key,
                          "(" + FormatVector(point, ", ") + ") m is outside the map's bounds (" +

@@ -45,7 +45,8 @@ namespace aerobox {
 //   [swarm]                              # how they keep apart: planning, separation, downwash
 
 // One [[vehicles]] table: a vehicle of several in one world. Its kind and controller default to
-// the scenario's [vehicle] and [controller].
+// the scenario's [vehicle] and [controller]; a [vehicles.vehicle] table after it changes its
+// vehicle's values as [vehicle] does; goals = [[x, y, z], ...] in place of goal flies a mission.
 struct VehicleEntry {
   std::string name;
   std::string kind;        // "": the scenario's [vehicle] (with its overrides)
@@ -53,7 +54,8 @@ struct VehicleEntry {
   double rate = 0.0;       // [Hz] 0: the scenario's [controller] rate
   Vec3 start = Vec3::Zero();
   Vec3 goal = Vec3::Zero();
-  int line = 0;  // where its table starts
+  std::vector<Vec3> via;  // goals = [...]: the goals before the last (which is `goal`)
+  int line = 0;           // where its table starts
   void Describe(Archive& a);
 };
 

