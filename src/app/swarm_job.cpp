@@ -11,6 +11,7 @@
 #include "mission/swarm_mission.h"
 #include "mission/telemetry_table.h"
 #include "outputs/report.h"
+#include "outputs/summary.h"
 #include "scene/scene_mjcf.h"
 #include "telemetry/json_object.h"
 
@@ -69,17 +70,12 @@ JsonObject VehicleSummary(const SwarmMember& m, const SwarmSchedule& s, const Pl
       .Add("delay_s", s.delay)
       .Add("detour", s.detour)
       .Add("trajectory_time_s", s.duration)
-      .Add("obstacle", f.obstacle)
       .Add("flight_time_s", f.time)
-      .Add("rms_error_m", f.rms_error)
-      .Add("max_error_m", f.max_error)
-      .Add("min_clearance_m", f.min_clearance)
       .Add("min_separation_m", separation)
-      .Add("distance_m", f.distance)
       .Add("replans", f.replans)
-      .Add("goals_reached",
-           static_cast<int>(f.goal_times.size()) + (f.status == FlightStatus::kReachedGoal ? 1 : 0))
-      .Add("top_speed_mps", f.top_speed);
+      .Add("goals_reached", static_cast<int>(f.goal_times.size()) +
+                                (f.status == FlightStatus::kReachedGoal ? 1 : 0));
+  AddFlightNumbers(f, &v);  // a lone flight's keys
   return v;
 }
 

@@ -85,6 +85,22 @@ void AddDiscovery(const FlightSetup& setup, const MissionResult& result, JsonObj
 
 }  // namespace
 
+void AddFlightNumbers(const FlightResult& flight, JsonObject* summary) {
+  summary->Add("distance_flown_m", flight.distance)
+      .Add("average_speed_mps", flight.AverageSpeed())
+      .Add("top_speed_mps", flight.top_speed)
+      .Add("peak_rotor_command_fraction", flight.peak_rotor_fraction)
+      .Add("rotor_saturated_s", flight.saturated_time)
+      .Add("tracking_rms_m", flight.rms_error)
+      .Add("tracking_max_m", flight.max_error)
+      .Add("takeoff_s", flight.takeoff_time)
+      .Add("min_clearance_m", flight.min_clearance)
+      .Add("collisions", flight.status == FlightStatus::kCollision ? 1 : 0)
+      .Add("collision_with", flight.obstacle)
+      .Add("simulation_warning", flight.message)
+      .Add("control_rate_hz", flight.control_rate);
+}
+
 JsonObject RunSummary(const FlightSetup& setup, const MissionResult& result,
                       const OutputCounts& counts) {
   const PlanOutcome& plan = result.plan;
@@ -140,21 +156,9 @@ JsonObject RunSummary(const FlightSetup& setup, const MissionResult& result,
     summary.Add("tracking_warning", TrackingNote(setup, flight));
     summary.Add("flight_status", ToString(flight.status))
         .Add("flight_time_s", flight.time)
-        .Add("flight_wall_time_s", result.flight_wall_time)
-        .Add("distance_flown_m", flight.distance)
-        .Add("average_speed_mps", flight.AverageSpeed())
-        .Add("top_speed_mps", flight.top_speed)
-        .Add("peak_rotor_command_fraction", flight.peak_rotor_fraction)
-        .Add("rotor_saturated_s", flight.saturated_time)
-        .Add("tracking_rms_m", flight.rms_error)
-        .Add("tracking_max_m", flight.max_error)
-        .Add("takeoff_s", flight.takeoff_time)
-        .Add("min_clearance_m", flight.min_clearance)
-        .Add("collisions", flight.status == FlightStatus::kCollision ? 1 : 0)
-        .Add("collision_with", flight.obstacle)
-        .Add("simulation_warning", flight.message)
-        .Add("control_rate_hz", flight.control_rate)
-        .Add("telemetry_rate_hz", flight.control_rate / counts.telemetry_every)
+        .Add("flight_wall_time_s", result.flight_wall_time);
+    AddFlightNumbers(flight, &summary);
+    summary.Add("telemetry_rate_hz", flight.control_rate / counts.telemetry_every)
         .Add("video_frames", counts.video_frames)
         .Add("video_fps", counts.video_fps);
     if (setup.sensors.Enabled()) {

@@ -25,6 +25,11 @@ std::string TrackingNote(const FlightSetup& setup, const FlightResult& flight);
 JsonObject RunSummary(const FlightSetup& setup, const MissionResult& result,
                       const OutputCounts& counts);
 
+// A flight's own numbers, in the keys RunSummary gives them: distance, speeds, rotor effort,
+// tracking, take-off, clearance, collision, MuJoCo's warning, control rate (a swarm's summary
+// gives each vehicle's so).
+void AddFlightNumbers(const FlightResult& flight, JsonObject* summary);
+
 // [m] from the setpoint at worst: beyond it a flight is reported as not following its trajectory
 // (the scenario tests' bound is 0.15 m)
 inline constexpr double kLargeTrackingError = 0.25;

@@ -316,9 +316,9 @@ nlohmann::json CheckSwarm(const char* name, size_t vehicles, double separation) 
   for (const nlohmann::json& v : summary["vehicles"]) {
     CAPTURE(v.dump());
     CHECK(v["status"] == "reached goal");
-    CHECK(v["obstacle"] == "");
+    CHECK(v["collision_with"] == "");
     CHECK(testing::SummaryNumber(v, "min_clearance_m") > 0);
-    CHECK(testing::SummaryNumber(v, "rms_error_m") < kMaxRms + 0.02);
+    CHECK(testing::SummaryNumber(v, "tracking_rms_m") < kMaxRms + 0.02);
     const std::string vehicle = v["name"];
     CHECK(std::filesystem::exists(dir.path() / "out" / vehicle / "telemetry.csv"));
     CHECK(std::filesystem::exists(dir.path() / "out" / vehicle / "trajectory.csv"));
