@@ -287,6 +287,30 @@ void CheckEndpoints(const FlightSetup& setup, std::ostream& out) {
   }
 }
 
+// Several vehicles: each one's vehicle, controller and route (its points checked as the start
+// and goal are, then where planning takes them), and how they keep apart.
+void CheckVehicles(const FlightSetup& setup, std::ostream& out) {
+  Row(out, "vehicles") << setup.vehicles.size() << " in one world ([[vehicles]]):\n";
+  for (size_t i = 0; i < setup.vehicles.size(); ++i) {
+    const FlightSetup member = setup.Member(i);
+    out << "            " << member.name << ": " << member.vehicle_kind << " "
+        << FormatNumber(member.vehicle.mass) << " kg, " << member.controller.kind << " at "
+        << FormatNumber(member.controller.rate) << " Hz, (" << FormatVector(member.start, ", ");
+    for (const Vec3& p : member.via) out << ") -> (" << FormatVector(p, ", ");
+    out << ") -> (" << FormatVector(*member.goal, ", ") << ") m\n";
+    const std::string at =
+        "vehicle " + member.name + ", line " + std::to_string(setup.vehicles[i].where.line);
+    CheckEndpoint(member, member.start, "start", at);
+    for (const Vec3& p : member.via) CheckEndpoint(member, p, "goals", at);
+    CheckEndpoint(member, *member.goal, "goal", at);
+  }
+  const SwarmParams& s = setup.swarm;
+  Row(out, "swarm") << "planning " << s.planning << ", " << FormatNumber(s.separation)
+                    << " m kept beyond both radii, waits of " << FormatNumber(s.wait_step)
+                    << " s up to " << FormatNumber(s.max_wait) << " s; downwash "
+                    << (s.downwash ? "on" : "off") << "\n";
+}
+
 int RunCheck(const FlightSetup& setup, std::ostream& out) {
   CheckPlaces(setup, out);
   // the settings in force, after the scenario's tables
@@ -301,6 +325,7 @@ int RunCheck(const FlightSetup& setup, std::ostream& out) {
   Row(out, "sensors") << DescribeSensors(setup.sensors) << "\n";
   Row(out, "planner") << DescribePlanning(setup) << "\n";
   Row(out, "unknown") << DescribeUnknownBoxes(setup) << "\n";
+  if (!setup.vehicles.empty()) CheckVehicles(setup, out);
   CheckEndpoints(setup, out);
   const Simulation sim = Simulation::FromXml(SceneMjcfFor(setup), setup.map.source + " (scene)");
   Row(out, "scene") << "loads in MuJoCo " << mj_versionString() << " (" << sim.model()->ngeom

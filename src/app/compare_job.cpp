@@ -107,7 +107,13 @@ std::string ProfilesCsv(const PlanOutcome& plan) {
 int RunCompare(const std::vector<std::string>& scenarios, const std::string& out_dir,
                std::ostream& out, std::ostream& progress) {
   std::vector<FlightSetup> setups;  // every file is read before any work
-  for (const std::string& scenario : scenarios) setups.push_back(LoadFlightSetup(scenario, {}));
+  for (const std::string& scenario : scenarios) {
+    setups.push_back(LoadFlightSetup(scenario, {}));
+    if (!setups.back().vehicles.empty()) {
+      throw InputError({scenario, setups.back().vehicles.front().where.line}, "vehicles",
+                       "compare flies one vehicle's route; this scenario has several");
+    }
+  }
   OutputFolder output(out_dir, "compare");
   const std::string& folder = output.staging();
   out << "| map | generator | integral snap^2 [m^2/s^7] | integral jerk^2 [m^2/s^5] | largest "

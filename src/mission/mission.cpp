@@ -139,6 +139,9 @@ FlightLoop LoopFor(const FlightSetup& setup, const PlanOutcome& plan, Controller
 
 MissionResult RunMission(const FlightSetup& setup, const MissionParts& parts) {
   setup.Validate();
+  if (!setup.vehicles.empty()) {
+    throw std::invalid_argument("RunMission flies one vehicle: RunSwarm flies [[vehicles]]");
+  }
   std::unique_ptr<Simulation> sim;
   const auto load_scene = [&](const std::vector<bool>& kept) {
     sim = std::make_unique<Simulation>(

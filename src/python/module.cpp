@@ -253,10 +253,20 @@ py::dict Result(const FlightRecord& record, const std::string& status) {
   return result;
 }
 
+// A scenario of several vehicles is flown by aerobox.Swarm (or `aerobox fly`), not as one.
+const SetupPtr& OneVehicle(const SetupPtr& setup, const char* who) {
+  if (!setup->vehicles.empty()) {
+    throw py::value_error(std::string(who) +
+                          ": the scenario has several vehicles ([[vehicles]]): " +
+                          "fly them with aerobox.Swarm(scenario).run(...) or `aerobox fly`");
+  }
+  return setup;
+}
+
 class SimulatorCore {
  public:
   explicit SimulatorCore(SetupPtr setup)
-      : setup_(std::move(setup)),
+      : setup_(OneVehicle(setup, "aerobox.Simulator")),
         xml_(SceneMjcfFor(*setup_)),
         sim_(Load()),
         obstacles_(setup_->map, CollisionParams{setup_->vehicle.collision_size, 0.0}),
@@ -680,6 +690,7 @@ void AddMission(const MissionResult& mission, py::dict* result) {
 // mission's goals, unknown boxes, sensing and replanning), with the set-up's controller or the
 // user's object.
 py::tuple Fly(const SetupPtr& given, const py::object& controller, const std::string& choice) {
+  OneVehicle(given, "aerobox.fly");
   auto record = std::make_shared<FlightRecord>();
   auto setup = std::make_shared<FlightSetup>(*given);
   record->setup = setup;

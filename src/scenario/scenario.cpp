@@ -1053,6 +1053,13 @@ void CheckVehicles(const FlightSetup& setup) {
 
 FlightSetup SetupFrom(const std::string& path, std::optional<Scenario> scenario,
                       const SetupOverrides& overrides) {
+  if (scenario && !scenario->vehicles.empty() && (overrides.start || overrides.goal)) {
+    throw InputError({"command line", 0}, overrides.start ? "--start" : "--goal",
+                     "the scenario's [[vehicles]] give each vehicle its own start and goal " +
+                         std::string("(line ") +
+                         std::to_string(scenario->vehicles.front().where.line) + " of " +
+                         scenario->file + ")");
+  }
   FlightSetup setup;
   ReadSetupMap(path, scenario, &setup);
   setup.seed = overrides.seed.value_or(scenario ? scenario->seed : 1);

@@ -681,3 +681,43 @@ TEST_CASE("--set works on a bare map, and the flags are --set in other words") {
 }
 
 }  // namespace aerobox
+
+namespace aerobox {
+
+TEST_CASE("check of several vehicles: each one's vehicle, controller and route, and the swarm") {
+  const TempDir dir;
+  dir.Write("room.txt", kRoom);
+  const std::string scenario = dir.Write(
+      "two.toml",
+      "map = \"room.txt\"\n[swarm]\ndownwash = true\n"
+      "[[vehicles]]\nname = \"a\"\nstart = [1, 1, 1]\ngoals = [[1, 4, 1], [4, 4, 1]]\n"
+      "[[vehicles]]\nname = \"b\"\nkind = \"crazyflie\"\ncontroller = \"se3\"\nrate = 500\n"
+      "start = [4, 1, 1]\ngoal = [1, 4, 1.5]\n");
+  const Run run = Aerobox({"check", scenario});
+  CAPTURE(run.out);
+  CAPTURE(run.err);
+  CHECK(run.code == kExitReachedGoal);
+  CHECK(run.out.find("vehicles  2 in one world") != std::string::npos);
+  CHECK(
+      run.out.find("a: tello 0.08 kg, cascade at 250 Hz, (1, 1, 1) -> (1, 4, 1) -> (4, 4, 1) m") !=
+      std::string::npos);
+  CHECK(run.out.find("b: crazyflie 0.03 kg, se3 at 500 Hz, (4, 1, 1) -> (1, 4, 1.5) m") !=
+        std::string::npos);
+  CHECK(run.out.find("swarm     planning prioritised") != std::string::npos);
+  CHECK(run.out.find("downwash on") != std::string::npos);
+  // a vehicle's goal inside a box is named as the lone vehicle's is
+  const std::string boxed =
+      dir.Write("boxed.toml",
+                "map = \"room.txt\"\n[[vehicles]]\nname = \"a\"\nstart = [1, 1, 1]\n"
+                "goal = [2.5, 2.5, 1]\n");
+  const Run bad = Aerobox({"check", boxed});
+  CHECK(bad.code == kExitBadInput);
+  CHECK(bad.err.find("goal (vehicle a, line 2)") != std::string::npos);
+  // the vehicles give their own starts and goals: the command line cannot
+  const Run moved = Aerobox({"fly", scenario, "--goal", "2,2,1", "--out", dir.path().string()});
+  CHECK(moved.code == kExitBadInput);
+  CHECK(moved.err.find("--goal: the scenario's [[vehicles]] give each vehicle its own") !=
+        std::string::npos);
+}
+
+}  // namespace aerobox
