@@ -803,11 +803,18 @@ class Cli {
     FlightSetup setup = LoadFlightSetup(input, overrides);
     ReadInjectedFaults(&setup);
     if (fly->parsed() && fly_options.telemetry_rate != 0) {
-      const double every = setup.controller.rate / fly_options.telemetry_rate;
-      if (!(fly_options.telemetry_rate > 0) || std::abs(every - std::round(every)) > 1e-9) {
-        throw InputError({"command line", 0}, "--telemetry-rate",
-                         "must divide the controller's rate, " +
-                             FormatNumber(setup.controller.rate) + " Hz (e.g. 250, 50, 10)");
+      // every controller's rate: the scenario's, or each vehicle's of several
+      std::vector<std::pair<double, std::string>> rates = {{setup.controller.rate, ""}};
+      if (!setup.vehicles.empty()) rates.clear();
+      for (const SwarmMember& m : setup.vehicles) rates.push_back({m.controller.rate, m.name});
+      for (const auto& [rate, vehicle] : rates) {
+        const double every = rate / fly_options.telemetry_rate;
+        if (!(fly_options.telemetry_rate > 0) || std::abs(every - std::round(every)) > 1e-9) {
+          throw InputError({"command line", 0}, "--telemetry-rate",
+                           "must divide the controller's rate" +
+                               (vehicle.empty() ? std::string() : " of vehicle " + vehicle) + ", " +
+                               FormatNumber(rate) + " Hz (e.g. 250, 50, 10)");
+        }
       }
     }
     if (fly->parsed()) {

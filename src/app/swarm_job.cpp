@@ -57,7 +57,7 @@ struct SwarmOutputs {
 };
 
 JsonObject VehicleSummary(const SwarmMember& m, const SwarmSchedule& s, const PlanOutcome& plan,
-                          const FlightResult& f, double separation) {
+                          const FlightResult& f, double separation, double vehicle_clearance) {
   JsonObject v;
   v.Add("name", m.name)
       .Add("vehicle", m.vehicle_kind)
@@ -72,9 +72,12 @@ JsonObject VehicleSummary(const SwarmMember& m, const SwarmSchedule& s, const Pl
       .Add("trajectory_time_s", s.duration)
       .Add("flight_time_s", f.time)
       .Add("min_separation_m", separation)
+      .Add("min_vehicle_clearance_m", vehicle_clearance)
       .Add("replans", f.replans)
-      .Add("goals_reached", static_cast<int>(f.goal_times.size()) +
-                                (f.status == FlightStatus::kReachedGoal ? 1 : 0));
+      .Add("goals_reached",  // a vehicle that held its start reached none
+           s.flies ? static_cast<int>(f.goal_times.size()) +
+                         (f.status == FlightStatus::kReachedGoal ? 1 : 0)
+                   : 0);
   AddFlightNumbers(f, &v);  // a lone flight's keys
   return v;
 }
@@ -83,7 +86,8 @@ JsonObject SwarmSummary(const FlightSetup& setup, const SwarmMissionResult& r) {
   std::vector<JsonObject> vehicles;
   for (size_t i = 0; i < setup.vehicles.size(); ++i) {
     vehicles.push_back(VehicleSummary(setup.vehicles[i], r.schedule[i], r.plans[i],
-                                      r.flight.flights[i], r.flight.vehicle_min_separation[i]));
+                                      r.flight.flights[i], r.flight.vehicle_min_separation[i],
+                                      r.flight.vehicle_min_clearance[i]));
   }
   JsonObject swarm;
   swarm.Add("planning", setup.swarm.planning)
@@ -94,6 +98,7 @@ JsonObject SwarmSummary(const FlightSetup& setup, const SwarmMissionResult& r) {
       .Add("min_separation_time_s", r.flight.min_separation_time)
       .Add("closest_pair", r.flight.closest_pair)
       .Add("makespan_s", r.makespan)
+      .Add("flown_makespan_s", r.flown_makespan)
       .Add("alone_makespan_s", r.alone_makespan)
       .Add("flight_time_s", r.flight.time)
       .Add("flight_wall_time_s", r.flight_wall_time);
@@ -127,13 +132,14 @@ std::string SwarmTable(const OutputFolder& output, const FlightSetup& setup,
     if (!s.detour.empty()) table << "; bent " << s.detour;
     if (f.replans > 0) table << "; replanned " << f.replans << " time(s)";
     table << "; tracking RMS " << f.rms_error << " m, closest vehicle "
-          << r.flight.vehicle_min_separation[i] << " m\n";
+          << r.flight.vehicle_min_separation[i] << " m apart (" << r.flight.vehicle_min_clearance[i]
+          << " m clear)\n";
   }
   table << "  separation  " << r.flight.min_separation << " m at least (" << r.flight.closest_pair
         << ", at " << r.flight.min_separation_time << " s)\n"
-        << "  makespan    " << r.makespan << " s scheduled, " << r.alone_makespan
-        << " s for the longest flown alone; " << r.flight.time << " s of flight in "
-        << r.flight_wall_time << " s wall\n"
+        << "  makespan    " << r.makespan << " s scheduled, " << r.flown_makespan << " s flown, "
+        << r.alone_makespan << " s for the longest flown alone; " << r.flight.time
+        << " s of flight in " << r.flight_wall_time << " s wall\n"
         << "  files       " << output.path() << "/<vehicle>/{path,trajectory,telemetry}.csv, "
         << "summary.json" << (options.overview ? ", overview.png" : "")
         << (options.report ? ", report.html" : "") << (options.video ? ", video.mp4" : "") << "\n";

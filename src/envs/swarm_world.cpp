@@ -9,7 +9,8 @@
 namespace aerobox {
 namespace {
 
-std::unique_ptr<Simulation> RoomWith(const QuadParams& vehicle, int agents, const Aabb& room) {
+std::unique_ptr<Simulation> RoomWith(const QuadParams& vehicle, int agents, const Aabb& room,
+                                     double physics_rate) {
   Map map;
   map.name = "swarm room";
   map.bounds = room;
@@ -21,8 +22,10 @@ std::unique_ptr<Simulation> RoomWith(const QuadParams& vehicle, int agents, cons
     const Vec3 p(room.min.x() + 0.5 + 0.5 * i, room.min.y() + 0.5, 1.0);
     vehicles.push_back({names.back(), vehicle, VehicleRestPosition(map, vehicle, p), SwarmRgba(i)});
   }
+  SceneOptions options;
+  options.timestep = 1.0 / physics_rate;
   return std::make_unique<Simulation>(
-      Simulation::FromXml(BuildSceneMjcf(map, vehicles, SceneOptions()), "swarm room", names));
+      Simulation::FromXml(BuildSceneMjcf(map, vehicles, options), "swarm room", names));
 }
 
 }  // namespace
@@ -39,7 +42,7 @@ SwarmWorld::SwarmWorld(const EnvParams& params, int agents, const Aabb& room)
   if (!(room.Size().array() > 1.0).all()) {
     throw std::invalid_argument("the room must be larger than 1 m on every side");
   }
-  sim_ = RoomWith(vehicle_, agents, room);
+  sim_ = RoomWith(vehicle_, agents, room, params_.physics_rate);
   steps_per_control_ = std::lround(1.0 / (params_.control_rate * sim_->timestep()));
   loop_.vehicle = &vehicle_;
   loop_.control_rate = params_.control_rate;
@@ -82,6 +85,11 @@ std::vector<std::string> SwarmWorld::Step(const std::vector<const double*>& acti
       sim_->vehicle(i).SetCommands(rotors);
     }
     sim_->StepWorld();
+    // MuJoCo distrusts the state it stepped to (it reset it): every agent is out
+    if (const std::string warning = sim_->TakeNewWarnings(); !warning.empty()) {
+      for (std::string& t : touched) t = "MuJoCo's warning: " + warning;
+      return touched;
+    }
     for (int i = 0; i < agents(); ++i) {
       if (!touched[i].empty()) continue;
       for (const VehicleContact& c : sim_->vehicle(i).VehicleContacts()) touched[i] = c.other_geom;

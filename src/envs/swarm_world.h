@@ -30,7 +30,7 @@ class SwarmWorld {
   // One control period: agent i flies `actions[i]` (ActionSize values in [-1, 1]; the caller
   // checks), or, when it is nullptr, has its rotors off (an agent that is out of the game).
   // Returns, per agent, what it touched during the period: "" nothing, a geom's name ("floor"),
-  // or another agent's name.
+  // another agent's name, or, for every agent, MuJoCo's warning (the state is not trusted).
   std::vector<std::string> Step(const std::vector<const double*>& actions);
   State state(int i) const { return sim_->vehicle(i).VehicleState(); }
 

@@ -137,6 +137,7 @@ bool FlightRun::BeforePhysics(long k) {
   const State seen = world_->Seen(state);              // what the controller sees
   if (control_step && !Control(t, tr, seen)) return false;
   // the inner loops every step, on the command held between control steps
+  commanded_ = k;
   if (!world_->Command(command_, seen)) return End(FlightStatus::kNonFinite);
   ReachGoals(t, state);
   const double error = (state.p_W - setpoint_.p_W).norm();
@@ -253,22 +254,31 @@ bool FlightRun::AfterPhysics() {
 }
 
 void FlightRun::HoldBeforePhysics(long k) {
-  const double t = world_->time() - t0_;
-  const bool control_step = k % divider_ == 0;
-  if (control_step) world_->EndControlPeriod();
   const State state = world_->Truth();
-  const State seen = world_->Seen(state);
-  if (control_step) {
-    setpoint_ = setpoints_.At(t, takeoff_.ReferenceTime(t, state));
-    loop_.controller->Sense(world_->Now());
-    loop_.controller->Update(t, seen, setpoint_, &command_);
-  }
-  world_->Command(command_, seen);
   before_ = state;
+  if (commanded_ != k) {  // not on the step the flight ended: BeforePhysics has run the loops
+    commanded_ = k;
+    const double t = world_->time() - t0_;
+    const bool control_step = k % divider_ == 0;
+    if (control_step) world_->EndControlPeriod();
+    const State seen = world_->Seen(state);
+    if (control_step) {
+      setpoint_ = setpoints_.At(t, takeoff_.ReferenceTime(t, state));
+      loop_.controller->Sense(world_->Now());
+      loop_.controller->Update(t, seen, setpoint_, &command_);
+    }
+    world_->Command(command_, seen);
+  }
   world_->BeforePhysics(state);
 }
 
-void FlightRun::HoldAfterPhysics() { world_->AfterPhysics(before_); }
+std::optional<std::string> FlightRun::HoldAfterPhysics() {
+  world_->AfterPhysics(before_);
+  const std::vector<VehicleContact> contacts = world_->sim().VehicleContacts();
+  const std::optional<std::string> hit = Collision(contacts, takeoff_.airborne());
+  takeoff_.AfterStep(!contacts.empty());
+  return hit;
+}
 
 namespace {
 

@@ -188,6 +188,10 @@ struct FlightLoop {
   // Asked at each control step with the flight time [s] and the true state: true ends the flight
   // (FlightStatus::kTerminated). Empty: no rule of its own.
   std::function<bool(double t, const State& state)> terminate;
+  // The reference's clock is the flight's: neither a take-off from the floor nor a turn toward
+  // the way ahead (FlightParams::turn_first) holds it, so that several vehicles keep the timing
+  // their plans were kept apart with (the reference must give the climb time itself).
+  bool shared_clock = false;
   // [s] of flight from which the setpoint is NaN (a fault test's; infinity: never)
   double nonfinite_setpoint_from = std::numeric_limits<double>::infinity();
 };

@@ -19,7 +19,8 @@ constexpr double kMaxTakeoff = 3.0;
 
 }  // namespace
 
-Takeoff::Takeoff(const Vec3& start, const State& initial, bool touching) : start_(start) {
+Takeoff::Takeoff(const Vec3& start, const State& initial, bool touching, bool holds_clock)
+    : start_(start), holds_clock_(holds_clock) {
   // on the floor until the first step without floor contact. Before the first step MuJoCo has
   // found no contact for a vehicle resting exactly on the floor: one that sits still right below
   // the trajectory's start (PlaceVehicleAtStart leaves it on the floor) rests there too
@@ -27,7 +28,7 @@ Takeoff::Takeoff(const Vec3& start, const State& initial, bool touching) : start
                            (initial.p_W - start).head<2>().norm() < kTakeoffTolerance &&
                            start.z() - initial.p_W.z() > kTakeoffTolerance;
   airborne_ = !touching && !below_start;
-  lifting_ = !airborne_ && (initial.p_W - start).norm() > kTakeoffTolerance;
+  lifting_ = holds_clock && !airborne_ && (initial.p_W - start).norm() > kTakeoffTolerance;
 }
 
 double Takeoff::ReferenceTime(double t, const State& state) {
@@ -297,7 +298,7 @@ StandardParts::StandardParts(const Reference& reference, const FlightParams& par
                              const FlightLoop& loop, VehicleWorld* world)
     : world_(world),
       takeoff_(reference.evaluate(0.0, kPosition), world->Truth(),
-               !world->sim().VehicleContacts().empty()),
+               !world->sim().VehicleContacts().empty(), !loop.shared_clock),
       fly_away_(params.flyaway_distance),
       arrival_(params, loop.completion, reference.evaluate(reference.duration, kPosition),
                loop.goals.size()),

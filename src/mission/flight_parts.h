@@ -29,13 +29,15 @@ namespace aerobox {
 class Takeoff {
  public:
   // `start`: the reference's first point [m]; `initial` the vehicle's state, `touching`
-  // whether MuJoCo reports a contact before the first step.
-  Takeoff(const Vec3& start, const State& initial, bool touching);
+  // whether MuJoCo reports a contact before the first step. `holds_clock` false: the reference's
+  // clock is the flight's from the first step, whatever the lift and Hold (FlightLoop::
+  // shared_clock); the floor is still no collision until the vehicle has left it.
+  Takeoff(const Vec3& start, const State& initial, bool touching, bool holds_clock = true);
 
   // The reference's own time [s] at flight time `t`, ending the lift when the vehicle is there.
   double ReferenceTime(double t, const State& state);
   // From the next step on, the reference's time stands (`on`) or runs again.
-  void Hold(bool on) { holding_ = on; }
+  void Hold(bool on) { holding_ = on && holds_clock_; }
   double held() const { return held_; }  // [s] the clock has stood in all
   bool lifting() const { return lifting_; }
   // Whether the vehicle has left the floor (floor contacts are collisions from then on).
@@ -45,6 +47,7 @@ class Takeoff {
 
  private:
   Vec3 start_;
+  bool holds_clock_;
   bool airborne_;
   bool lifting_;
   bool holding_ = false;
@@ -388,10 +391,12 @@ class FlightRun {
   // The result, once the flight has ended (called once).
   FlightResult Finish();
 
-  // After it reached its goal, the vehicle may hold the reference's end in a world that others
-  // still fly in: the controller and the inner loops go on, nothing judges or observes.
+  // After its flight has ended (reached its goal, or timed out), the vehicle may hold the
+  // reference's end in a world that others still fly in: the controller and the inner loops go
+  // on (on the step the flight ended, from where BeforePhysics left them), nothing is observed;
+  // HoldAfterPhysics gives what the vehicle hit, if anything.
   void HoldBeforePhysics(long k);
-  void HoldAfterPhysics();
+  std::optional<std::string> HoldAfterPhysics();
 
   FlightStatus status() const { return result_.status; }
   VehicleWorld& world() const { return *world_; }
@@ -414,8 +419,9 @@ class FlightRun {
   ControlCommand command_;
   std::vector<double> report_;
   FlightResult result_;
-  double t0_ = 0.0;  // [s] the world's time when the flight began
-  State before_;     // the state the physics step starts from
+  double t0_ = 0.0;      // [s] the world's time when the flight began
+  State before_;         // the state the physics step starts from
+  long commanded_ = -1;  // the last physics step whose inner loops ran
 };
 
 // Flies `reference` with `loop`'s controller and goals through `parts`: the closed loop itself,

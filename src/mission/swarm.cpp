@@ -5,6 +5,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "common/stop.h"
 #include "mission/flight_parts.h"
 
 namespace aerobox {
@@ -17,7 +18,10 @@ void SwarmParams::Describe(Archive& a) {
   a.Number({"separation", "m", "kept between two vehicles, beyond both their radii"}, &separation,
            0, 10);
   a.Number({"wait_step", "s", "a start is delayed in steps of this ..."}, &wait_step, 0.01, 10);
-  a.Number({"max_wait", "s", "... up to this, before a detour is tried"}, &max_wait, 0, 600);
+  a.Number({"max_wait", "s", "... up to this, before a detour is tried"}, &max_wait, 0, 120);
+  a.Number({"takeoff_time", "s",
+            "a vehicle that starts on the floor climbs to its trajectory's start this long first"},
+           &takeoff_time, 0, 30);
   a.Boolean({"downwash", "", "a vehicle above another pushes it down (gym-pybullet-drones' model)"},
             &downwash);
   a.Number({"downwash_c1", "N", "the downwash model's first coefficient (Crazyflie 2.x fit)"},
@@ -53,24 +57,46 @@ namespace {
 // One vehicle's flight in the shared world: its world, its parts and its run.
 struct Member {
   Member(const SwarmVehicle& v, const FlightParams& params, MujocoVehicle* physics)
-      : world(v.loop, physics), standard(v.reference, params, v.loop, &world) {
+      : world(v.loop, physics),
+        params(v.flight.value_or(params)),
+        standard(v.reference, this->params, v.loop, &world) {
     parts = standard.parts();
-    run = std::make_unique<FlightRun>(v.reference, params, v.loop, parts);
+    run = std::make_unique<FlightRun>(v.reference, this->params, v.loop, parts);
   }
   enum class Phase { kFlying, kHolding, kDown };
   VehicleWorld world;
+  FlightParams params;
   StandardParts standard;
   FlightParts parts;
   std::unique_ptr<FlightRun> run;
   Phase phase = Phase::kFlying;
 };
 
-// The flight of member i has ended: its result, and what it does from now on (it holds its goal,
-// or its rotors stop).
+// The flight of member i has ended: its result, and what it does from now on: a vehicle that
+// still flies holds its reference's end; one that crashed, or has no controller or no trusted
+// state left, has its rotors cut.
 void Ended(Member* m, FlightResult* result) {
   *result = m->run->Finish();
-  m->phase =
-      result->status == FlightStatus::kReachedGoal ? Member::Phase::kHolding : Member::Phase::kDown;
+  switch (result->status) {
+    case FlightStatus::kReachedGoal:
+    case FlightStatus::kTimeout:
+    case FlightStatus::kMissedGoal:
+    case FlightStatus::kTerminated:
+    case FlightStatus::kFlyAway:
+      m->phase = Member::Phase::kHolding;
+      break;
+    default:
+      m->phase = Member::Phase::kDown;
+  }
+}
+
+// A holding vehicle that hit something: its flight ends as a collision now.
+void HitWhileHolding(Member* m, const std::string& what, double t, FlightResult* result) {
+  result->status = FlightStatus::kCollision;
+  result->obstacle = what;
+  result->time = t;
+  result->end_position = m->world.Truth().p_W;
+  m->phase = Member::Phase::kDown;
 }
 
 // Each vehicle's push from the vehicles above it.
@@ -78,13 +104,15 @@ void ApplyDownwash(const std::vector<SwarmVehicle>& vehicles,
                    const std::vector<std::unique_ptr<Member>>& members, const SwarmParams& swarm) {
   for (size_t i = 0; i < members.size(); ++i) {
     Vec3 force = Vec3::Zero();
-    const Vec3 lower = members[i]->world.Truth().p_W;
+    const Vec3 lower = members[i]->world.Truth().p_W;  // [m]; the force below along body z
     for (size_t j = 0; j < members.size(); ++j) {
       if (j == i || members[j]->phase == Member::Phase::kDown) continue;
       force += DownwashForce(members[j]->world.Truth().p_W, lower,
                              vehicles[j].loop.vehicle->propeller_radius, swarm);
     }
-    members[i]->world.SetInteractionForce(force);
+    // the model's push is along the lower vehicle's body z (gym-pybullet-drones applies it in
+    // the body frame)
+    members[i]->world.SetInteractionForce(members[i]->world.Truth().q_WB * force);
   }
 }
 
@@ -94,10 +122,14 @@ void MeasureSeparation(const std::vector<SwarmVehicle>& vehicles,
                        SwarmFlightResult* result) {
   for (size_t i = 0; i < members.size(); ++i) {
     const Vec3 p = members[i]->world.Truth().p_W;
+    const double ri = VehicleRadius(*vehicles[i].loop.vehicle);
     for (size_t j = i + 1; j < members.size(); ++j) {
       const double d = (members[j]->world.Truth().p_W - p).norm();
+      const double gap = d - ri - VehicleRadius(*vehicles[j].loop.vehicle);
       result->vehicle_min_separation[i] = std::min(result->vehicle_min_separation[i], d);
       result->vehicle_min_separation[j] = std::min(result->vehicle_min_separation[j], d);
+      result->vehicle_min_clearance[i] = std::min(result->vehicle_min_clearance[i], gap);
+      result->vehicle_min_clearance[j] = std::min(result->vehicle_min_clearance[j], gap);
       if (d < result->min_separation) {
         result->min_separation = d;
         result->min_separation_time = t;
@@ -130,6 +162,7 @@ SwarmFlightResult FlySwarm(const std::vector<SwarmVehicle>& vehicles, const Flig
   SwarmFlightResult result;
   result.flights.resize(vehicles.size());
   result.vehicle_min_separation.assign(vehicles.size(), std::numeric_limits<double>::infinity());
+  result.vehicle_min_clearance = result.vehicle_min_separation;
   const double t0 = sim->time();
   for (long k = 0;; ++k) {
     // each vehicle's push from those above it, from where they are as the step begins
@@ -159,7 +192,9 @@ SwarmFlightResult FlySwarm(const std::vector<SwarmVehicle>& vehicles, const Flig
       if (m.phase == Member::Phase::kFlying && !m.run->AfterPhysics()) {
         Ended(&m, &result.flights[i]);
       } else if (m.phase == Member::Phase::kHolding) {
-        m.run->HoldAfterPhysics();
+        if (const std::optional<std::string> hit = m.run->HoldAfterPhysics()) {
+          HitWhileHolding(&m, *hit, sim->time() - t0, &result.flights[i]);
+        }
       }
     }
     MeasureSeparation(vehicles, members, sim->time() - t0, &result);
@@ -186,33 +221,59 @@ Reference Delayed(const Reference& reference, double delay) {
   return delayed;
 }
 
-Conflict Check(const Reservation& a, const Reservation& b, double separation) {
-  constexpr double kSample = 0.01;  // [s]
-  const double required = a.radius + b.radius + separation;
-  const double end = std::max(a.reference.duration, b.reference.duration);
+namespace {
+
+constexpr double kSample = 0.01;  // [s] between the points a reservation is checked at
+
+// A reservation's positions every kSample from t = 0 to its end (held there after it).
+std::vector<Vec3> Sampled(const Reference& r) {
+  std::vector<Vec3> p;
+  const long n = static_cast<long>(std::ceil(r.duration / kSample - 1e-9));
+  for (long k = 0; k <= n; ++k)
+    p.push_back(r.evaluate(std::min(k * kSample, r.duration), kPosition));
+  return p;
+}
+
+// The least margin [m] between `a` started `shift` samples late (at its start until then) and
+// `b`, both held at their ends, beyond `required` [m] between centres; and when.
+Conflict Margin(const std::vector<Vec3>& a, long shift, const std::vector<Vec3>& b,
+                double required) {
+  const long end = std::max(static_cast<long>(a.size()) + shift, static_cast<long>(b.size()));
+  const auto at = [](const std::vector<Vec3>& p, long k) -> const Vec3& {
+    return p[static_cast<size_t>(std::clamp(k, 0L, static_cast<long>(p.size()) - 1))];
+  };
   Conflict conflict;
-  for (long k = 0;; ++k) {
-    const double t = std::min(k * kSample, end);
-    const Vec3 pa = a.reference.evaluate(std::min(t, a.reference.duration), kPosition);
-    const Vec3 pb = b.reference.evaluate(std::min(t, b.reference.duration), kPosition);
-    const double margin = (pa - pb).norm() - required;
-    if (margin < conflict.margin) conflict = {margin, t};
-    if (t >= end) break;
+  for (long k = 0; k < end; ++k) {
+    const double margin = (at(a, k - shift) - at(b, k)).norm() - required;
+    if (margin < conflict.margin) conflict = {margin, k * kSample};
   }
   return conflict;
 }
 
+}  // namespace
+
+Conflict Check(const Reservation& a, const Reservation& b, double separation) {
+  return Margin(Sampled(a.reference), 0, Sampled(b.reference), a.radius + b.radius + separation);
+}
+
 std::optional<double> ConflictFreeDelay(const Reservation& candidate,
                                         const std::vector<Reservation>& reserved,
-                                        const SwarmParams& params) {
-  const long steps = static_cast<long>(std::floor(params.max_wait / params.wait_step + 1e-9));
-  for (long k = 0; k <= steps; ++k) {
-    const double delay = k * params.wait_step;
-    const Reservation delayed{Delayed(candidate.reference, delay), candidate.radius};
-    const bool clear = std::all_of(reserved.begin(), reserved.end(), [&](const Reservation& r) {
-      return Check(delayed, r, params.separation).margin >= 0.0;
-    });
-    if (clear) return delay;
+                                        const SwarmParams& params, double min_delay) {
+  const std::vector<Vec3> own = Sampled(candidate.reference);
+  std::vector<std::vector<Vec3>> others;
+  for (const Reservation& r : reserved) others.push_back(Sampled(r.reference));
+  const long step = std::max(1L, std::lround(params.wait_step / kSample));
+  const long first = std::lround(std::ceil(min_delay / kSample - 1e-9));
+  const long last = std::lround(std::floor(std::max(params.max_wait, min_delay) / kSample + 1e-9));
+  for (long shift = first; shift <= last; shift += step) {
+    ThrowIfStopRequested("planning several vehicles apart");
+    bool clear = true;
+    for (size_t i = 0; i < reserved.size() && clear; ++i) {
+      clear =
+          Margin(own, shift, others[i], candidate.radius + reserved[i].radius + params.separation)
+              .margin >= 0.0;
+    }
+    if (clear) return shift * kSample;
   }
   return std::nullopt;
 }

@@ -55,16 +55,23 @@ std::vector<Bend> Bends(const Vec3& start, const Vec3& goal, double step) {
   return bends;
 }
 
-// Vehicle i's schedule among the reservations of those before it: a wait, or a bent path and a
-// wait (its plan then holds the bent path and trajectory), or none.
+// [s] before a vehicle's trajectory may start: the climb of one resting on the floor below it.
+double TakeoffDelay(const FlightSetup& member, const PlanOutcome& plan, const SwarmParams& swarm) {
+  const Vec3 rest = VehicleRestPosition(member.map, member.vehicle, member.start);
+  return (plan.start.used - rest).norm() > 0.02 ? swarm.takeoff_time : 0.0;
+}
+
+// Vehicle i's schedule among the reservations of those before it: a wait (at least
+// `min_delay` [s]), or a bent path and a wait (its plan then holds the bent path and
+// trajectory; a mission through goals is not bent), or none.
 SwarmSchedule ScheduleOne(const FlightSetup& member, PlanOutcome* plan,
                           const std::vector<Reservation>& before, const SwarmParams& swarm,
-                          Reservation* reserved) {
+                          double min_delay, Reservation* reserved) {
   SwarmSchedule s;
   const double radius = VehicleRadius(member.vehicle);
   const Reservation own{ReferenceOf(plan->trajectory->trajectory), radius};
   s.duration = own.reference.duration;
-  if (const std::optional<double> delay = ConflictFreeDelay(own, before, swarm)) {
+  if (const std::optional<double> delay = ConflictFreeDelay(own, before, swarm, min_delay)) {
     s.flies = true;
     s.delay = *delay;
     *reserved = {Delayed(own.reference, *delay), radius};
@@ -72,14 +79,16 @@ SwarmSchedule ScheduleOne(const FlightSetup& member, PlanOutcome* plan,
   }
   const Vec3 a = plan->start.used, b = plan->goal.used;
   const CollisionWorld world(member.map, member.PlannerCollision());
-  for (const Bend& bend : Bends(a, b, 1.5 * (2 * radius + swarm.separation))) {
+  const std::vector<Bend> bends =
+      plan->via.empty() ? Bends(a, b, 1.5 * (2 * radius + swarm.separation)) : std::vector<Bend>();
+  for (const Bend& bend : bends) {
     const Vec3 middle = 0.5 * (a + b) + bend.offset;
     if (!world.IsSegmentFree(a, middle) || !world.IsSegmentFree(middle, b)) continue;
     const std::vector<Vec3> path = {a, middle, b};
     TrajectoryResult bent = TrajectoryAlong(member, path);
     if (bent.status != TrajectoryStatus::kSolved) continue;
     const Reservation candidate{ReferenceOf(bent.trajectory), radius};
-    const std::optional<double> delay = ConflictFreeDelay(candidate, before, swarm);
+    const std::optional<double> delay = ConflictFreeDelay(candidate, before, swarm, min_delay);
     if (!delay) continue;
     s.flies = true;
     s.delay = *delay;
@@ -132,12 +141,14 @@ void Schedule(const FlightSetup& setup, const std::vector<FlightSetup>& members,
     } else {
       const PiecewiseTrajectory& alone = plan.trajectory->trajectory;
       result->alone_makespan = std::max(result->alone_makespan, alone.duration());
+      const double climb = TakeoffDelay(members[i], plan, setup.swarm);
       if (setup.swarm.planning == "none") {
         s.flies = true;
+        s.delay = climb;
         s.duration = alone.duration();
-        mine = {ReferenceOf(alone), radius};
+        mine = {Delayed(ReferenceOf(alone), climb), radius};
       } else {
-        s = ScheduleOne(members[i], &plan, reserved, setup.swarm, &mine);
+        s = ScheduleOne(members[i], &plan, reserved, setup.swarm, climb, &mine);
         if (!s.flies) mine = {Parked(plan.start.used), radius};
       }
     }
@@ -169,7 +180,9 @@ SwarmVehicle Flight(const FlightSetup& member, const PlanOutcome& plan, const Sw
   v.reference = s.flies ? Delayed(ReferenceOf(plan.trajectory->trajectory), s.delay)
                         : Parked(plan.start.used);
   v.loop = LoopFor(member, plan, fleet->controllers.back().get(), *fleet->worlds.back());
-  v.loop.seed = seed;  // each vehicle's own turbulence and sensor noise
+  v.loop.seed = seed;                  // each vehicle's own turbulence and sensor noise
+  v.loop.shared_clock = true;          // the plans were kept apart on the world's clock
+  if (!s.flies) v.loop.goals.clear();  // it holds its start: no mission to miss
   if (member.HasUnknown() && s.flies) {
     fleet->replanners.push_back(std::make_unique<std::optional<Replanner>>());
     AddReplanner(member, plan, fleet->replanners.back().get(), &v.loop);
@@ -228,7 +241,13 @@ SwarmMissionResult RunSwarm(const FlightSetup& setup, const SwarmParts& parts) {
     known.push_back(Known(members.back()));
   }
   SwarmMissionResult result;
-  for (const FlightSetup& member : known) result.plans.push_back(PlanFlight(member));
+  for (const FlightSetup& member : known) {
+    try {
+      result.plans.push_back(PlanFlight(member));
+    } catch (const InputError& e) {  // an unusable start or goal: named with its vehicle
+      throw InputError(e.where(), "vehicles." + member.name + "." + e.field(), e.problem());
+    }
+  }
   Schedule(setup, known, &result);
   for (size_t i = 0; i < n; ++i) {
     for (MissionObserver* o : observers(i)) o->OnPlan(result.plans[i]);
@@ -256,6 +275,10 @@ SwarmMissionResult RunSwarm(const FlightSetup& setup, const SwarmParts& parts) {
   for (size_t i = 0; i < n; ++i) {
     const SwarmSchedule& s = result.schedule[i];
     if (s.flies) result.makespan = std::max(result.makespan, s.delay + s.duration);
+    const FlightResult& f = result.flight.flights[i];
+    if (s.flies && f.status == FlightStatus::kReachedGoal) {
+      result.flown_makespan = std::max(result.flown_makespan, f.time);
+    }
     for (MissionObserver* o : observers(i)) o->OnFlightEnd(sim, result.flight.flights[i]);
   }
   for (MissionObserver* o : parts.world) o->OnFlightEnd(sim, WorldResult(setup, result.flight));

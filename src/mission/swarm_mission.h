@@ -26,8 +26,11 @@ struct SwarmMissionResult {
   std::vector<SwarmSchedule> schedule;
   SwarmFlightResult flight;
   double flight_wall_time = 0.0;  // [s]
-  // the last arrival on the shared clock against the longest trajectory flown alone [s]
+  // the last arrival on the shared clock as scheduled (waits and trajectories), as flown (the
+  // last flight that reached its goal, within its tolerance), and the longest trajectory flown
+  // alone [s]
   double makespan = 0.0;
+  double flown_makespan = 0.0;
   double alone_makespan = 0.0;
   bool AllReached() const;
 };

@@ -14,6 +14,7 @@
 
 #include "envs/env_batch.h"
 #include "envs/swarm_world.h"
+#include "mission/swarm.h"
 #include "python/py_params.h"
 #include "python/seams.h"
 #include "render/renderer.h"
@@ -188,6 +189,7 @@ class SwarmCore {
   int agents() const { return world_->agents(); }
   int action_size() const { return action_size_; }
   double time() const { return world_->time(); }
+  double vehicle_radius() const { return VehicleRadius(world_->vehicle()); }  // [m]
   py::dict quad_params() const { return python::VehicleDict(world_->vehicle()); }
 
   void Reset(const py::array_t<double, py::array::c_style | py::array::forcecast>& starts) {
@@ -270,6 +272,7 @@ void BindEnvs(py::module_& m) {
       .def_property_readonly("agents", &SwarmCore::agents)
       .def_property_readonly("action_size", &SwarmCore::action_size)
       .def_property_readonly("time", &SwarmCore::time)
+      .def_property_readonly("vehicle_radius", &SwarmCore::vehicle_radius)
       .def_property_readonly("quad_params", &SwarmCore::quad_params)
       .def("reset", &SwarmCore::Reset, py::arg("starts"))
       .def("step", &SwarmCore::Step, py::arg("actions"))

@@ -519,12 +519,13 @@ class SwarmSimulatorCore {
     Simulation sim = Checked([&] { return Simulation::FromXml(xml_, setup_->name, names_); });
     std::vector<Flown> flown(n);
     std::vector<SwarmVehicle> vehicles(n);
-    FlightParams params = setup_->flight;
+    const FlightParams params = setup_->flight;
     for (size_t i = 0; i < n; ++i) {
       Prepare(i, controllers[i], trajectories[i], t_final, control_rate, choice, &sim, &flown[i],
               &vehicles[i]);
-      if (t_final > 0) {
-        params.settle_time = std::max(0.0, t_final - vehicles[i].reference.duration);
+      if (t_final > 0) {  // each vehicle's own settle time, to end at t_final
+        vehicles[i].flight = params;
+        vehicles[i].flight->settle_time = std::max(0.0, t_final - vehicles[i].reference.duration);
       }
     }
     const auto begin = std::chrono::steady_clock::now();

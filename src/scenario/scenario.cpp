@@ -3,6 +3,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -567,6 +568,17 @@ void ReadVehicleEntries(const toml::node& node, const std::string& file, Scenari
       }
     }
     entry.name = FolderName(*table->get("name"), file, "vehicles.name");
+    // a folder of outputs beside summary.json, and a prefix of MuJoCo's names
+    const bool plain = std::isalnum(static_cast<unsigned char>(entry.name[0])) &&
+                       std::all_of(entry.name.begin(), entry.name.end(), [](char c) {
+                         return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+                       });
+    if (!plain) {
+      throw InputError({file, LineOf(*table->get("name"))}, "vehicles.name",
+                       "\"" + entry.name +
+                           "\": expected letters, digits, _ and -, from a letter "
+                           "or digit (it names the vehicle's folder of outputs)");
+    }
     const toml::node* goals = table->get("goals");
     if ((goals != nullptr) == (table->get("goal") != nullptr)) {
       throw InputError({file, goals ? LineOf(*goals) : entry.line},
@@ -658,6 +670,12 @@ void ResolveVehicles(const toml::table& table, const std::string& file, Scenario
         MemberOf(entry, vehicle ? vehicle->as_table() : nullptr, *scenario, file));
   }
   if (scenario->vehicles.empty()) return;
+  for (const char* key : {"start", "goal", "goals"}) {  // each vehicle has its own
+    if (const toml::node* given = table.get(key)) {
+      throw InputError({file, LineOf(*given)}, key,
+                       "with [[vehicles]], each vehicle's table gives its start and goal");
+    }
+  }
   const VehicleEntry& first = scenario->vehicle_entries.front();
   if (!scenario->start) {
     scenario->start = first.start;

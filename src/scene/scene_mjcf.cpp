@@ -180,7 +180,16 @@ std::string SwarmRgba(int index) {
   static const char* const kPalette[] = {"0.90 0.30 0.25 1", "0.20 0.50 0.85 1", "0.25 0.70 0.35 1",
                                          "0.95 0.65 0.15 1", "0.60 0.35 0.75 1", "0.15 0.70 0.75 1",
                                          "0.85 0.40 0.65 1", "0.45 0.45 0.45 1"};
-  return kPalette[index % 8];
+  if (index < 8) return kPalette[index];
+  // then hues a golden angle apart, alternately lighter and darker: no two alike
+  const double hue = std::fmod(0.13 + 0.618033988749895 * index, 1.0) * 6.0;
+  const double value = index % 2 == 0 ? 0.9 : 0.6, chroma = 0.6 * value;
+  const double x = chroma * (1.0 - std::abs(std::fmod(hue, 2.0) - 1.0));
+  const int sector = static_cast<int>(hue) % 6;
+  const double rgb[6][3] = {{chroma, x, 0}, {x, chroma, 0}, {0, chroma, x},
+                            {0, x, chroma}, {x, 0, chroma}, {chroma, 0, x}};
+  const double m = value - chroma;
+  return Vec(Eigen::Vector4d(rgb[sector][0] + m, rgb[sector][1] + m, rgb[sector][2] + m, 1.0));
 }
 
 std::string BuildSceneMjcf(const Map& map, const std::vector<SceneVehicle>& vehicles,

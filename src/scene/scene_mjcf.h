@@ -56,7 +56,7 @@ struct SceneVehicle {
 };
 
 // The colour of the i-th vehicle of a swarm ("r g b a"), as the scene and the report draw it:
-// eight well-separated hues, then again.
+// eight well-separated colours, then hues a golden angle apart.
 std::string SwarmRgba(int index);
 
 // The scene with several vehicles in one world: as above, every vehicle with its own names,

@@ -79,8 +79,10 @@ Simulation::Simulation(MjModelPtr model, const std::string& source,
     : model_(std::move(model)) {
   data_.reset(mj_makeData(model_.get()));
   if (vehicles.empty()) throw InputError({source, 0}, "", "a world needs a vehicle");
+  const auto resets = std::make_shared<long>(0);
   for (const std::string& name : vehicles) {
-    vehicles_.push_back(std::make_unique<MujocoVehicle>(model_.get(), data_.get(), name, source));
+    vehicles_.push_back(
+        std::make_unique<MujocoVehicle>(model_.get(), data_.get(), name, source, resets));
   }
   mj_forward(model_.get(), data_.get());
 }
@@ -94,8 +96,8 @@ Simulation Simulation::Clone() const {
 void Simulation::StepWorld() { mj_step(model_.get(), data_.get()); }
 
 MujocoVehicle::MujocoVehicle(mjModel* model, mjData* data, std::string name,
-                             const std::string& source)
-    : model_(model), data_(data), name_(std::move(name)) {
+                             const std::string& source, std::shared_ptr<long> resets)
+    : model_(model), data_(data), name_(std::move(name)), resets_(std::move(resets)) {
   const auto of = [this](const std::string& element) { return model_names::Of(name_, element); };
   body_id_ = RequireId(model_, mjOBJ_BODY, of(model_names::kBody), source);
   const int joint = model_->body_jntadr[body_id_];
@@ -142,7 +144,7 @@ void MujocoVehicle::ScaleVehicle(const VehicleScaling& s) {
 
 void MujocoVehicle::ResetData() {
   mj_resetData(model_, data_);
-  warnings_seen_.fill(0);
+  ++*resets_;  // every vehicle's warnings count from 0 again
   mj_forward(model_, data_);
 }
 
@@ -217,10 +219,12 @@ Vec3 MujocoVehicle::AngularAcceleration_B() const {
 
 std::string MujocoVehicle::TakeNewWarnings() {
   std::string text;
+  if (resets_seen_ != *resets_) {  // the data was reset (MuJoCo's counts with it) since the last
+    resets_seen_ = *resets_;
+    warnings_seen_.fill(0);
+  }
   for (int i = 0; i < mjNWARNING; ++i) {
     const mjWarningStat& stat = data_->warning[i];
-    // another vehicle of the world reset the data (and MuJoCo's counts) since the last call
-    if (stat.number < warnings_seen_[i]) warnings_seen_[i] = 0;
     if (stat.number <= warnings_seen_[i]) continue;
     warnings_seen_[i] = stat.number;
     if (!text.empty()) text += "; ";

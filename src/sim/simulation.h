@@ -33,7 +33,9 @@ class MujocoVehicle : public VehiclePhysics {
  public:
   // Throws InputError (naming `source`) when the model lacks the vehicle's body, joint or
   // rotor actuators.
-  MujocoVehicle(mjModel* model, mjData* data, std::string name, const std::string& source);
+  // `resets` counts the resets of the world's data, shared by its vehicles.
+  MujocoVehicle(mjModel* model, mjData* data, std::string name, const std::string& source,
+                std::shared_ptr<long> resets);
 
   const std::string& name() const { return name_; }
   int body_id() const { return body_id_; }
@@ -70,6 +72,8 @@ class MujocoVehicle : public VehiclePhysics {
   std::array<int, 4> actuator_ids_{};
   std::array<int, 4> act_adr_{};                 // each rotor's motor-lag state in mjData::act
   std::array<int, mjNWARNING> warnings_seen_{};  // mjData::warning[i].number already reported
+  std::shared_ptr<long> resets_;                 // the world's resets ...
+  long resets_seen_ = 0;                         // ... as of warnings_seen_
   // the vehicle's values as made, which ScaleVehicle scales
   struct Made {
     double mass = 0.0;

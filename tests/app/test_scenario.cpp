@@ -639,6 +639,10 @@ TEST_CASE("[[vehicles]]: bad vehicles are refused naming the vehicle, the file a
         "x.toml:6: vehicles.b.kind: expected \"tello\" or \"crazyflie\", got \"blimp\"");
   CHECK(SwarmError("[[vehicles]]\nname = \"a\"\nstart = [1, 0, 1]\n") ==
         "x.toml:2: vehicles.a.goal: missing key: give goal or goals");
+  CHECK(SwarmError("[[vehicles]]\nname = \"..\"\nstart = [1, 0, 1]\ngoal = [0, 0, 1]\n")
+            .rfind("x.toml:3: vehicles.name: \"..\": expected letters, digits, _ and -", 0) == 0);
+  CHECK(SwarmError("start = [1, 1, 1]\n" + a) ==
+        "x.toml:2: start: with [[vehicles]], each vehicle's table gives its start and goal");
   CHECK(SwarmError("[[vehicles]]\nname = \"a/b\"\nstart = [1, 0, 1]\ngoal = [0, 0, 1]\n")
             .rfind("x.toml:3: vehicles.name: expected a non-empty string without '/'", 0) == 0);
   CHECK(SwarmError("[[vehicles]]\nnme = \"a\"\n").rfind("x.toml:3: vehicles.nme: unknown key", 0) ==

@@ -250,4 +250,41 @@ TEST_CASE("with walls unknown until seen each vehicle replans on its own") {
   for (const FlightResult& f : result.flight.flights) CHECK(f.min_clearance > 0);
 }
 
+TEST_CASE("vehicles that start on the floor keep the planned timing and pass apart") {
+  // b's path crosses a's; a climbs from the floor first: on the shared clock its trajectory
+  // starts after the take-off time, as it was reserved (a take-off that held a's clock would
+  // put it where b was told it would not be)
+  const FlightSetup setup = RoomSetup(Vehicle("a", "[0, -1.5, 0]", "[0, 1.5, 1]") +
+                                      Vehicle("b", "[-1.5, 0, 1]", "[1.5, 0, 1]"));
+  const SwarmMissionResult result = RunSwarm(setup, SwarmParts());
+  CHECK(result.AllReached());
+  CHECK(result.schedule[0].delay >= setup.swarm.takeoff_time);
+  const double r = VehicleRadius(setup.vehicles[0].vehicle);
+  CHECK(result.flight.min_separation > 2 * r);
+}
+
+TEST_CASE("a vehicle that holds its start keeps hovering there, its mission not missed") {
+  // b's goal is on a's: b holds its start, with a mission that must not count as missed
+  const FlightSetup setup = RoomSetup(
+      Vehicle("a", "[1, 0, 1]", "[-1, 0, 1]") +
+      "[[vehicles]]\nname = \"b\"\nstart = [0, 1, 1]\ngoals = [[0, 0.5, 1], [-0.95, 0, 1]]\n");
+  const SwarmMissionResult result = RunSwarm(setup, SwarmParts());
+  REQUIRE_FALSE(result.schedule[1].flies);
+  CHECK(result.flight.flights[1].status == FlightStatus::kReachedGoal);  // at its start, held
+  CHECK((result.flight.flights[1].end_position - Vec3(0, 1, 1)).norm() < 0.05);
+}
+
+TEST_CASE("a vehicle that has arrived and holds its goal is hit: both are collisions") {
+  // without planning, b flies through where a arrived and hovers
+  Fleet fleet({"a", "b"}, {Line(Vec3(1, 0, 1), Vec3(0, 0, 1), 1.0),
+                           Line(Vec3(0, -1.5, 1), Vec3(0, 1.5, 1), 3.0)});
+  Simulation world = WorldOf({"a", "b"}, {Vec3(1, 0, 1), Vec3(0, -1.5, 1)});
+  const SwarmFlightResult result = FlySwarm(fleet.vehicles, Params(), SwarmParams(), &world);
+  CHECK(result.flights[0].status == FlightStatus::kCollision);
+  CHECK(result.flights[0].obstacle == "b");
+  CHECK(result.flights[1].status == FlightStatus::kCollision);
+  CHECK(result.flights[1].obstacle == "a");
+  CHECK(result.vehicle_min_clearance[0] < 0.01);
+}
+
 }  // namespace aerobox

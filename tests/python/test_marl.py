@@ -67,6 +67,18 @@ class ParallelApi(unittest.TestCase):
         self.assertFalse(np.array_equal(first[0], other[0]))
 
 
+class Physics(unittest.TestCase):
+    def test_the_physics_rate_is_the_world_s_step(self):
+        def after(rate):
+            env = parallel_env(agents=2, physics_rate=rate)
+            env.reset(seed=1)
+            observations, *_ = env.step({a: np.full(4, 0.3, np.float32) for a in env.agents})
+            return observations["agent_0"]
+        fine, coarse = after(1000), after(200)
+        self.assertFalse(np.array_equal(fine, coarse))
+        np.testing.assert_allclose(fine[:6], coarse[:6], atol=5e-3)  # the same flight, roughly
+
+
 class Contacts(unittest.TestCase):
     def test_two_agents_flown_into_each_other_are_both_out_naming_the_other(self):
         env = parallel_env(agents=2, action="ctatt", radius=1.0)
@@ -100,6 +112,7 @@ class Contacts(unittest.TestCase):
 class BadInputs(unittest.TestCase):
     def test_bad_parameters_and_actions_are_refused_naming_them(self):
         cases = [(dict(agents=1), "agents=1"), (dict(radius=-1), "radius=-1"),
+                 (dict(agents=64, radius=1.0), "neighbours would start"),
                  (dict(vehicle="blimp"), "vehicle"), (dict(action="velocity"), "velocity")]
         for kwargs, named in cases:
             with self.subTest(**kwargs):

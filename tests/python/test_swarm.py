@@ -66,6 +66,21 @@ class TwoVehicles(unittest.TestCase):
         self.assertTrue(result["all_reached"])
 
 
+class Settle(unittest.TestCase):
+    def test_t_final_gives_each_vehicle_its_own_settle_time(self):
+        # a short and a long trajectory: t_final is each one's end, whatever the order
+        for order in (("short", "long"), ("long", "short")):
+            with self.subTest(order=order):
+                starts = {"short": [1, 0, 1], "long": [-1, 0, 1]}
+                lines = {"short": Line([1, 0, 1], [1, 0.3, 1], 1.0),
+                         "long": Line([-1, 0, 1], [-1, 2, 1], 4.0)}
+                swarm = aerobox.Swarm(ROOM, vehicles=[
+                    dict(name=n, start=starts[n], vehicle="crazyflie") for n in order])
+                result = swarm.run({n: "se3" for n in order}, lines, t_final=6.0)
+                for name in order:
+                    self.assertEqual(result["vehicles"][name]["status"], "reached goal", name)
+
+
 class OneVehicle(unittest.TestCase):
     def test_one_vehicle_of_a_swarm_flies_as_the_simulator_flies_it(self):
         line = Line([0.5, 0.5, 1], [1.5, -0.5, 1.5], 3)

@@ -83,6 +83,12 @@ class SwapEnv(ParallelEnv):
         self._room = (-r - margin, -r - margin, 0.0, r + margin, r + margin, h + margin)
         world["episode_time"] = float(task["episode_time"])
         self._core = _aerobox.SwarmCore(world, n, list(self._room), _WHO)
+        apart = 2 * r * math.sin(math.pi / n)  # [m] between neighbours on the circle
+        least = 2 * self._core.vehicle_radius + 0.05
+        if apart < least:
+            raise ValueError(f"{_WHO}: agents={n}, radius={r!r}: neighbours would start "
+                             f"{apart:.3f} m apart, less than two vehicles and 5 cm ({least:.3f} "
+                             "m); give a larger radius or fewer agents")
         self.render_mode = None
         self.possible_agents = [f"agent_{i}" for i in range(n)]
         self.agents = []
