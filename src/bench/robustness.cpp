@@ -68,7 +68,7 @@ FlightSetup WindySetup(const std::string& scenario, int seed, const std::string&
   setup.wind.turbulence = Turbulence::kDryden;
   setup.wind.intensity = DrydenIntensities(std::max(speed, 1.0), 6.1);
   setup.aero = AeroParams{true, true};
-  setup.controller.drag_feedforward = true;
+  FollowTheAir(false, false, &setup);  // drag fed forward, se3's integral in wind
   setup.sensors.imu.enabled = true;
   setup.sensors.position.enabled = true;
   return setup;
@@ -157,9 +157,12 @@ constexpr PublishedErrors kNeuralFly[] = {{"PID-type baseline", {10.3, 9.4, 13.9
 // The mean position error [m] of one figure-8 in a constant wind of `speed` [m/s] along x, with
 // drag, an IMU and motion capture; NaN when the flight does not end well.
 double EightMeanError(const std::string& controller, double speed) {
-  ControllerConfig control;
-  ApplyController(controller, &control);
-  control.drag_feedforward = true;
+  FlightSetup air;  // the controller's defaults that follow the air, as a scenario's do
+  air.wind.mean = Vec3(speed, 0, 0);
+  air.aero = AeroParams{true, true};
+  ApplyController(controller, &air.controller);
+  FollowTheAir(false, false, &air);
+  const ControllerConfig& control = air.controller;
   const QuadParams vehicle;
   const std::unique_ptr<Controller> made = MakeController(control, vehicle);
   FlightLoop loop;
@@ -167,8 +170,8 @@ double EightMeanError(const std::string& controller, double speed) {
   loop.controller = made.get();
   loop.control_rate = control.rate;
   loop.inner = control.inner;
-  loop.wind.mean = Vec3(speed, 0, 0);
-  loop.aero = AeroParams{true, true};
+  loop.wind = air.wind;
+  loop.aero = air.aero;
   loop.sensors.imu.enabled = true;
   loop.sensors.position.enabled = true;
   double sum = 0;

@@ -47,8 +47,8 @@ void ControllerConfig::Describe(Archive& a) {
            1e5);
   a.Vector({"se3_rate_gain", "1/s", "se3: on the body-rate error"}, &se3.rate_gain, 0, 1e5);
   a.Vector({"se3_position_integral", "1/s^3",
-            "se3: on the position error's integral, below position times velocity gain (none "
-            "with the observer)"},
+            "se3: on the position error's integral, below position times velocity gain (a "
+            "scenario with wind: 12, none with the observer)"},
            &se3.position_integral, 0, 1e5);
   a.Number({"se3_integral_limit", "m/s^2", "se3: the integral term's anti-windup clamp"},
            &se3.integral_limit, 0, 100);

@@ -24,7 +24,8 @@ struct Se3Params {
   // The position error's integral, so that a steady force (a mean wind) leaves no steady error,
   // and its clamp [m/s^2] (anti-windup); it grows only while the velocity error is under
   // 0.2 m/s. Off by default: it slows every transient (the Crazyflie released 7 cm off holds
-  // within 10 mm after 3 s instead of 0.3 mm, a 1 m step overshoots 5 % instead of 0.03 %).
+  // within 10 mm after 3 s instead of 0.3 mm, a 1 m step overshoots 5 % instead of 0.03 %); a
+  // scenario with wind turns it on (FollowTheAir, mission/setup.h).
   // 4, 4, 6 puts the error's poles at -2, -2, -1 1/s across and -4.7, -1.3, -1 1/s along z;
   // Routh: stable while it is below position_gain * velocity_gain. The disturbance observer,
   // which meets the force itself, flies without it (control/controllers.h).

@@ -34,6 +34,18 @@ CollisionParams FlightSetup::TrajectoryCollision() const {
   return CollisionParams{vehicle.collision_size, planning.trajectory_clearance};
 }
 
+void FollowTheAir(bool feedforward_given, bool integral_given, FlightSetup* setup) {
+  std::vector<ControllerConfig*> controllers = {&setup->controller};
+  for (SwarmMember& m : setup->vehicles) controllers.push_back(&m.controller);
+  for (ControllerConfig* c : controllers) {
+    if (!feedforward_given) c->drag_feedforward = setup->aero.Enabled();
+    if (!integral_given) {
+      const bool integrates = setup->wind.Enabled() && !c->observer.enabled;
+      c->se3.position_integral = integrates ? kSe3WindIntegral : Vec3::Zero();
+    }
+  }
+}
+
 FlightSetup FlightSetup::Member(size_t i) const {
   const SwarmMember& m = vehicles.at(i);
   FlightSetup one = *this;

@@ -475,6 +475,7 @@ const std::pair<const char*, SectionReader> kSections[] = {
      [](const toml::table& t, const SourceLocation& at, Scenario* s) {
        ReadController(t, at.file, at.line, &s->controller);
        s->drag_feedforward_given = t.get("drag_feedforward") != nullptr;
+       s->se3_integral_given = t.get("se3_position_integral") != nullptr;
      }},
     {"flight",
      [](const toml::table& t, const SourceLocation& at, Scenario* s) {
@@ -919,11 +920,8 @@ void ApplyScenarioTables(const std::optional<Scenario>& scenario, FlightSetup* s
   if (setup->wind.Enabled() && !(scenario && scenario->aero_given)) {
     setup->aero.body_drag = setup->aero.rotor_drag = true;
   }
-  // a controller in drag knows its own: it feeds it forward unless [controller] says not to
-  if (!(scenario && scenario->drag_feedforward_given)) {
-    setup->controller.drag_feedforward = setup->aero.Enabled();
-    for (SwarmMember& m : setup->vehicles) m.controller.drag_feedforward = setup->aero.Enabled();
-  }
+  FollowTheAir(scenario && scenario->drag_feedforward_given,
+               scenario && scenario->se3_integral_given, setup);
 }
 
 // The start and goal beside the map: "<map stem>.startgoal.txt", or RBE595's own layout,

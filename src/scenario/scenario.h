@@ -87,6 +87,7 @@ struct Scenario {
   QuadParams vehicle;                   // the kind's values with the table's overrides
   ControllerConfig controller;          // [controller]
   bool drag_feedforward_given = false;  // [controller] drag_feedforward (else it follows [aero])
+  bool se3_integral_given = false;  // [controller] se3_position_integral (else it follows [wind])
   bool yaw_given = false;   // [flight] yaw (else a depth camera turns the yaw along the travel)
   FlightParams flight;      // [flight]
   WindParams wind;          // [wind]

@@ -650,3 +650,26 @@ TEST_CASE("[[vehicles]]: bad vehicles are refused naming the vehicle, the file a
 }
 
 }  // namespace aerobox
+
+namespace aerobox {
+
+TEST_CASE("se3 in wind integrates its position error unless told, in still air it does not") {
+  const std::string file = (testing::SourceDir() / "scenes" / "window" / "x.toml").string();
+  const auto load = [&file](const std::string& tables) {
+    return LoadFlightSetupFromText("map = \"map.json\"\n[controller]\nkind = \"se3\"\n" + tables,
+                                   file, {});
+  };
+  CHECK(load("").controller.se3.position_integral == Vec3::Zero());
+  const FlightSetup windy = load("[wind]\nmean = [3, 0, 0]\n");
+  CHECK(windy.controller.se3.position_integral == kSe3WindIntegral);
+  CHECK(windy.controller.drag_feedforward);  // the other default that follows the air
+  // the disturbance observer meets the force itself; a given integral is kept
+  CHECK(load("observer = true\n[wind]\nmean = [3, 0, 0]\n").controller.se3.position_integral ==
+        Vec3::Zero());
+  CHECK(load("se3_position_integral = 0\n[wind]\nmean = [3, 0, 0]\n")
+            .controller.se3.position_integral == Vec3::Zero());
+  CHECK(load("se3_position_integral = [4, 4, 6]\n").controller.se3.position_integral ==
+        Vec3(4, 4, 6));
+}
+
+}  // namespace aerobox
