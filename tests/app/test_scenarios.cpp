@@ -113,12 +113,19 @@ TEST_CASE("scenario window_in_wind: every controller kind, indi and the observer
   struct Kind {
     std::vector<std::string> set;
     double max_rms, max_error;  // [m]
+    bool measures;              // the IMU's acceleration (indi, the observer)
   };
+  // se3 alone flies with its position integral in wind (the scenario's default): 6.2-10.3 cm
+  // RMS, at most 20 cm, on seeds 1-5 (without it, 2 of 5 reached the goal)
   const Kind kinds[] = {
-      {{"--set", "controller.kind=\"indi\""}, 0.04, 0.08},
-      {{"--set", "controller.kind=\"se3\"", "--set", "controller.observer=true"}, 0.05, 0.1},
-      {{"--set", "controller.kind=\"cascade\"", "--set", "controller.observer=true"}, 0.06, 0.12},
-      {{"--set", "controller.kind=\"cascade\""}, 0.25, 0.45},
+      {{"--set", "controller.kind=\"indi\""}, 0.04, 0.08, true},
+      {{"--set", "controller.kind=\"se3\"", "--set", "controller.observer=true"}, 0.05, 0.1, true},
+      {{"--set", "controller.kind=\"cascade\"", "--set", "controller.observer=true"},
+       0.06,
+       0.12,
+       true},
+      {{"--set", "controller.kind=\"cascade\""}, 0.25, 0.45, false},
+      {{"--set", "controller.kind=\"se3\""}, 0.14, 0.28, false},
   };
   for (const char* seed : {"1", "2", "3"}) {
     for (const Kind& kind : kinds) {
@@ -132,8 +139,7 @@ TEST_CASE("scenario window_in_wind: every controller kind, indi and the observer
       CHECK(testing::SummaryNumber(flight.summary, "collisions") == 0);
       CHECK(testing::SummaryNumber(flight.summary, "tracking_rms_m") < kind.max_rms);
       CHECK(testing::SummaryNumber(flight.summary, "tracking_max_m") < kind.max_error);
-      const bool measures = kind.set.back() != "controller.kind=\"cascade\"";
-      CHECK(flight.summary.value("controller_measures", "") == (measures ? "imu" : ""));
+      CHECK(flight.summary.value("controller_measures", "") == (kind.measures ? "imu" : ""));
     }
   }
 }
