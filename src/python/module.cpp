@@ -263,6 +263,39 @@ const SetupPtr& OneVehicle(const SetupPtr& setup, const char* who) {
   return setup;
 }
 
+// run()'s reference: an aerobox Trajectory exactly (its waypoints into `path`), cut at `t_final`
+// [s] when that is sooner, or the user's object (PythonReference; `known`: it gave a duration).
+Reference RunReference(const py::object& trajectory, double t_final, bool* known,
+                       std::vector<Vec3>* path) {
+  *known = true;
+  if (!py::isinstance<Trajectory>(trajectory)) return PythonReference(trajectory, t_final, known);
+  const Trajectory& ours = trajectory.cast<const Trajectory&>();
+  Reference reference = ReferenceOf(ours.result.trajectory);
+  if (t_final > 0 && t_final < reference.duration) reference.duration = t_final;
+  *path = ours.result.waypoints;
+  return reference;
+}
+
+// run()'s controller at `rate` [Hz]: a built-in by name (`config`'s kind), or the user's object
+// (`users` points at it; `config`'s kind names its class).
+std::unique_ptr<Controller> RunController(const py::object& controller, const QuadParams& vehicle,
+                                          double rate, const std::string& choice,
+                                          ControllerConfig* config,
+                                          const PythonController** users) {
+  config->rate = rate;
+  if (py::isinstance<py::str>(controller)) {
+    config->kind = controller.cast<std::string>();
+    return Checked([&] {
+      config->Validate();
+      return MakeController(*config, vehicle);
+    });
+  }
+  auto user = std::make_unique<PythonController>(controller, vehicle, ParseCommandChoice(choice));
+  *users = user.get();
+  config->kind = "python:" + std::string(py::str(py::type::handle_of(controller).attr("__name__")));
+  return user;
+}
+
 class SimulatorCore {
  public:
   explicit SimulatorCore(SetupPtr setup)
@@ -364,38 +397,15 @@ class SimulatorCore {
     }
     auto record = std::make_shared<FlightRecord>();
     record->setup = setup_;
-    // the reference: an aerobox trajectory exactly, or the user's object
-    Reference reference;
     bool duration_known = true;
-    if (py::isinstance<Trajectory>(trajectory)) {
-      const Trajectory& ours = trajectory.cast<const Trajectory&>();
-      reference = ReferenceOf(ours.result.trajectory);
-      if (t_final > 0 && t_final < reference.duration) reference.duration = t_final;
-      record->plan.result.path = ours.result.waypoints;
-    } else {
-      reference = PythonReference(trajectory, t_final, &duration_known);
-    }
+    const Reference reference =
+        RunReference(trajectory, t_final, &duration_known, &record->plan.result.path);
     FlightParams params = setup_->flight;
     if (t_final > 0) params.settle_time = std::max(0.0, t_final - reference.duration);
-    // the controller: a built-in by name, or the user's object
-    std::unique_ptr<Controller> made;
     const PythonController* users = nullptr;  // the user's controller, when it is one
     ControllerConfig config = setup_->controller;
-    config.rate = control_rate;
-    if (py::isinstance<py::str>(controller)) {
-      config.kind = controller.cast<std::string>();
-      made = Checked([&] {
-        config.Validate();
-        return MakeController(config, setup_->vehicle);
-      });
-    } else {
-      auto user = std::make_unique<PythonController>(controller, setup_->vehicle,
-                                                     ParseCommandChoice(choice));
-      users = user.get();
-      made = std::move(user);
-      config.kind =
-          "python:" + std::string(py::str(py::type::handle_of(controller).attr("__name__")));
-    }
+    const std::unique_ptr<Controller> made =
+        RunController(controller, setup_->vehicle, control_rate, choice, &config, &users);
     const Vec3 first = reference.evaluate(0.0, kPosition);
     if (reset) {
       sim_ = Load();
@@ -565,26 +575,11 @@ class SwarmSimulatorCore {
                SwarmVehicle* v) {
     const FlightSetup& member = members_[i];
     bool known = true;
-    if (py::isinstance<Trajectory>(trajectory)) {
-      v->reference = ReferenceOf(trajectory.cast<const Trajectory&>().result.trajectory);
-      if (t_final > 0 && t_final < v->reference.duration) v->reference.duration = t_final;
-    } else {
-      v->reference = PythonReference(trajectory, t_final, &known);
-    }
+    std::vector<Vec3> waypoints;
+    v->reference = RunReference(trajectory, t_final, &known, &waypoints);
     ControllerConfig config = member.controller;
-    config.rate = control_rate;
-    if (py::isinstance<py::str>(controller)) {
-      config.kind = controller.cast<std::string>();
-      flown->controller = Checked([&] {
-        config.Validate();
-        return MakeController(config, member.vehicle);
-      });
-    } else {
-      auto user = std::make_unique<PythonController>(controller, member.vehicle,
-                                                     ParseCommandChoice(choice));
-      flown->users = user.get();
-      flown->controller = std::move(user);
-    }
+    flown->controller =
+        RunController(controller, member.vehicle, control_rate, choice, &config, &flown->users);
     flown->record->setup = std::make_shared<FlightSetup>(member);
     flown->record->setup->controller = config;
     flown->record->controller_columns = flown->controller->ReportColumns();
@@ -608,7 +603,8 @@ class SwarmSimulatorCore {
     if (!known) v->loop.completion = Termination::OpenEnd(trajectory, v->reference);
     record->plan.start.used = first;
     record->plan.goal.used = v->reference.evaluate(v->reference.duration, kPosition);
-    record->plan.result.path = {first, record->plan.goal.used};
+    record->plan.result.path = waypoints;  // an aerobox trajectory's, else its ends
+    if (waypoints.empty()) record->plan.result.path = {first, record->plan.goal.used};
     record->plan.result.status = PlanStatus::kSolved;
     record->plan.planner = "given";
   }
