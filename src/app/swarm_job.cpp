@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <iomanip>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -82,6 +83,28 @@ JsonObject VehicleSummary(const SwarmMember& m, const SwarmSchedule& s, const Pl
   return v;
 }
 
+// The whole flight in a lone flight's keys, as a sweep reads them: the first failure (or
+// "reached goal"), the flight's time, the worst vehicle's tracking and the least clearance.
+void AddWorst(const FlightSetup& setup, const SwarmMissionResult& r, JsonObject* summary) {
+  std::string status = "reached goal", hit;
+  double rms = 0.0, clearance = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < r.flight.flights.size(); ++i) {
+    const FlightResult& f = r.flight.flights[i];
+    const bool failed = !r.schedule[i].flies || f.status != FlightStatus::kReachedGoal;
+    if (failed && status == "reached goal") {
+      status = r.schedule[i].flies ? ToString(f.status) : "held its start";
+      hit = setup.vehicles[i].name + (f.obstacle.empty() ? "" : " with " + f.obstacle);
+    }
+    rms = std::max(rms, f.rms_error);
+    clearance = std::min(clearance, f.min_clearance);
+  }
+  summary->Add("flight_status", status)
+      .Add("flight_time_s", r.flight.time)
+      .Add("tracking_rms_m", rms)
+      .Add("min_clearance_m", clearance)
+      .Add("collision_with", hit);
+}
+
 JsonObject SwarmSummary(const FlightSetup& setup, const SwarmMissionResult& r) {
   std::vector<JsonObject> vehicles;
   for (size_t i = 0; i < setup.vehicles.size(); ++i) {
@@ -106,9 +129,9 @@ JsonObject SwarmSummary(const FlightSetup& setup, const SwarmMissionResult& r) {
   summary.Add("scenario", setup.name)
       .Add("status", r.AllReached() ? "reached goal" : "flight failed")
       .Add("seed", static_cast<long long>(setup.seed))
-      .Add("map", setup.map.source)
-      .Add("swarm", swarm)
-      .Add("vehicles", vehicles);
+      .Add("map", setup.map.source);
+  AddWorst(setup, r, &summary);
+  summary.Add("swarm", swarm).Add("vehicles", vehicles);
   return summary;
 }
 

@@ -318,6 +318,10 @@ nlohmann::json CheckSwarm(const char* name, size_t vehicles, double separation) 
   const nlohmann::json summary = testing::ReadSummary(dir.path() / "out" / "summary.json");
   CHECK(summary["swarm"]["all_reached"] == true);
   CHECK(testing::SummaryNumber(summary["swarm"], "min_separation_m") > separation);
+  // the whole flight in a lone flight's keys, as a sweep reads them
+  CHECK(summary["flight_status"] == "reached goal");
+  CHECK(testing::SummaryNumber(summary, "flight_time_s") > 0);
+  CHECK(testing::SummaryNumber(summary, "tracking_rms_m") < kMaxRms + 0.02);
   REQUIRE(summary["vehicles"].size() == vehicles);
   for (const nlohmann::json& v : summary["vehicles"]) {
     CAPTURE(v.dump());
