@@ -216,6 +216,10 @@ std::string DescribeControl(const FlightSetup& setup) {
         << FormatVector(c.se3.velocity_gain) << " 1/s, attitude "
         << FormatVector(c.se3.attitude_gain) << " 1/s^2, rates " << FormatVector(c.se3.rate_gain)
         << " 1/s; ";
+    if (!c.se3.position_integral.isZero()) {
+      out << "position integral " << FormatVector(c.se3.position_integral) << " 1/s^3 (within "
+          << FormatNumber(c.se3.integral_limit) << " m/s^2); ";
+    }
   }
   out << "inner loops: attitude " << FormatVector(c.inner.attitude.gain) << " 1/s, rates "
       << FormatVector(c.inner.rate.gain) << " 1/s";

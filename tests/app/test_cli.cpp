@@ -684,6 +684,22 @@ TEST_CASE("--set works on a bare map, and the flags are --set in other words") {
 
 namespace aerobox {
 
+TEST_CASE("check shows se3's position integral, on in wind") {
+  const TempDir dir;
+  dir.Write("room.txt", kRoom);
+  const std::string windy =
+      dir.Write("windy.toml",
+                "map = \"room.txt\"\nstart = [1, 1, 1]\ngoal = [4, 4, 1]\n[controller]\n"
+                "kind = \"se3\"\n[wind]\nmean = [2, 0, 0]\n");
+  const Run run = Aerobox({"check", windy});
+  CAPTURE(run.out);
+  CHECK(run.out.find("position integral 12 12 12 1/s^3 (within 4 m/s^2)") != std::string::npos);
+  const std::string still = dir.Write("still.toml",
+                                      "map = \"room.txt\"\nstart = [1, 1, 1]\n"
+                                      "goal = [4, 4, 1]\n[controller]\nkind = \"se3\"\n");
+  CHECK(Aerobox({"check", still}).out.find("position integral") == std::string::npos);
+}
+
 TEST_CASE("check of several vehicles: each one's vehicle, controller and route, and the swarm") {
   const TempDir dir;
   dir.Write("room.txt", kRoom);
