@@ -57,13 +57,15 @@ namespace {
 // One vehicle's flight in the shared world: its world, its parts and its run.
 struct Member {
   Member(const SwarmVehicle& v, const FlightParams& params, MujocoVehicle* physics)
-      : world(v.loop, physics),
+      : radius(VehicleRadius(*v.loop.vehicle)),
+        world(v.loop, physics),
         params(v.flight.value_or(params)),
         standard(v.reference, this->params, v.loop, &world) {
     parts = standard.parts();
     run = std::make_unique<FlightRun>(v.reference, this->params, v.loop, parts);
   }
   enum class Phase { kFlying, kHolding, kDown };
+  double radius;  // [m] for the clearance between vehicles
   VehicleWorld world;
   FlightParams params;
   StandardParts standard;
@@ -99,33 +101,38 @@ void HitWhileHolding(Member* m, const std::string& what, double t, FlightResult*
   m->phase = Member::Phase::kDown;
 }
 
-// Each vehicle's push from the vehicles above it.
+// Every vehicle's true state now, read once for the pairs below.
+std::vector<State> Truths(const std::vector<std::unique_ptr<Member>>& members) {
+  std::vector<State> states;
+  for (const auto& m : members) states.push_back(m->world.Truth());
+  return states;
+}
+
+// Each vehicle's push from the vehicles above it, in `states`.
 void ApplyDownwash(const std::vector<SwarmVehicle>& vehicles,
-                   const std::vector<std::unique_ptr<Member>>& members, const SwarmParams& swarm) {
+                   const std::vector<std::unique_ptr<Member>>& members,
+                   const std::vector<State>& states, const SwarmParams& swarm) {
   for (size_t i = 0; i < members.size(); ++i) {
     Vec3 force = Vec3::Zero();
-    const Vec3 lower = members[i]->world.Truth().p_W;  // [m]; the force below along body z
     for (size_t j = 0; j < members.size(); ++j) {
       if (j == i || members[j]->phase == Member::Phase::kDown) continue;
-      force += DownwashForce(members[j]->world.Truth().p_W, lower,
+      force += DownwashForce(states[j].p_W, states[i].p_W,
                              vehicles[j].loop.vehicle->propeller_radius, swarm);
     }
     // the model's push is along the lower vehicle's body z (gym-pybullet-drones applies it in
     // the body frame)
-    members[i]->world.SetInteractionForce(members[i]->world.Truth().q_WB * force);
+    members[i]->world.SetInteractionForce(states[i].q_WB * force);
   }
 }
 
-// The distances between the vehicles after a step at flight time `t` [s].
+// The distances between the vehicles in `states`, after a step at flight time `t` [s].
 void MeasureSeparation(const std::vector<SwarmVehicle>& vehicles,
-                       const std::vector<std::unique_ptr<Member>>& members, double t,
-                       SwarmFlightResult* result) {
+                       const std::vector<std::unique_ptr<Member>>& members,
+                       const std::vector<State>& states, double t, SwarmFlightResult* result) {
   for (size_t i = 0; i < members.size(); ++i) {
-    const Vec3 p = members[i]->world.Truth().p_W;
-    const double ri = VehicleRadius(*vehicles[i].loop.vehicle);
     for (size_t j = i + 1; j < members.size(); ++j) {
-      const double d = (members[j]->world.Truth().p_W - p).norm();
-      const double gap = d - ri - VehicleRadius(*vehicles[j].loop.vehicle);
+      const double d = (states[j].p_W - states[i].p_W).norm();
+      const double gap = d - members[i]->radius - members[j]->radius;
       result->vehicle_min_separation[i] = std::min(result->vehicle_min_separation[i], d);
       result->vehicle_min_separation[j] = std::min(result->vehicle_min_separation[j], d);
       result->vehicle_min_clearance[i] = std::min(result->vehicle_min_clearance[i], gap);
@@ -166,7 +173,7 @@ SwarmFlightResult FlySwarm(const std::vector<SwarmVehicle>& vehicles, const Flig
   const double t0 = sim->time();
   for (long k = 0;; ++k) {
     // each vehicle's push from those above it, from where they are as the step begins
-    if (swarm.downwash) ApplyDownwash(vehicles, members, swarm);
+    if (swarm.downwash) ApplyDownwash(vehicles, members, Truths(members), swarm);
     bool flying = false;
     for (size_t i = 0; i < members.size(); ++i) {
       Member& m = *members[i];
@@ -197,7 +204,7 @@ SwarmFlightResult FlySwarm(const std::vector<SwarmVehicle>& vehicles, const Flig
         }
       }
     }
-    MeasureSeparation(vehicles, members, sim->time() - t0, &result);
+    MeasureSeparation(vehicles, members, Truths(members), sim->time() - t0, &result);
     if (after_step) after_step(sim->time() - t0);
   }
   for (const FlightResult& f : result.flights) result.time = std::max(result.time, f.time);
