@@ -77,15 +77,23 @@ RenderOptions RenderOptionsFor(const FlyOptions& options) {
   return render;
 }
 
+int TelemetryEvery(const FlyOptions& options, double rate) {
+  return options.telemetry_rate > 0 ? static_cast<int>(std::lround(rate / options.telemetry_rate))
+                                    : 1;
+}
+
+std::string ReportCommand(const FlyOptions& options, const FlightSetup& setup) {
+  if (!options.command.empty()) return options.command;
+  return "aerobox fly " + setup.map.source + " --seed " + std::to_string(setup.seed);
+}
+
 namespace {
 
 // A run's outputs in its staging folder, each an observer of the run.
 struct FlyOutputs {
   FlyOutputs(const std::string& folder, const FlightSetup& setup, const FlyOptions& options,
              std::ostream& err)
-      : every(options.telemetry_rate > 0
-                  ? static_cast<int>(std::lround(setup.controller.rate / options.telemetry_rate))
-                  : 1),
+      : every(TelemetryEvery(options, setup.controller.rate)),
         csv(folder, every, TelemetryExtrasFor(setup), options.telemetry) {
     parts.observers = {&csv};
     // no pictures asked for: no renderer either (a sweep's runs save its set-up)
@@ -275,10 +283,7 @@ void WriteSummaryAndReport(const std::string& folder, const FlightSetup& setup,
   WriteFileAtomically((fs::path(folder) / "summary.json").string(), summary.Text());
   if (!outputs.report) return;
   try {
-    outputs.report->Write(summary.Text(), options.command.empty()
-                                              ? "aerobox fly " + setup.map.source + " --seed " +
-                                                    std::to_string(setup.seed)
-                                              : options.command);
+    outputs.report->Write(summary.Text(), ReportCommand(options, setup));
   } catch (const InputError& e) {
     err << "aerobox: warning: no report.html: " << e.what() << "\n";
   }

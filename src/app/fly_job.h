@@ -35,6 +35,10 @@ void ValidateFlyOptions(const FlyOptions& options);
 
 // What the options ask of the pictures (video, overview, frames).
 RenderOptions RenderOptionsFor(const FlyOptions& options);
+// Control steps per telemetry row, for a controller at `rate` [Hz] (--telemetry-rate).
+int TelemetryEvery(const FlyOptions& options, double rate);
+// The command that repeats the run, as report.html shows it.
+std::string ReportCommand(const FlyOptions& options, const FlightSetup& setup);
 
 // Runs the whole job and returns the exit code (app/exit_codes.h). Throws InputError for bad
 // input, before anything is written.

@@ -32,10 +32,7 @@ struct SwarmOutputs {
       fs::create_directories(own);
       members.push_back(std::make_unique<FlightSetup>(setup.Member(i)));
       const FlightSetup& member = *members.back();
-      const int every =
-          options.telemetry_rate > 0
-              ? static_cast<int>(std::lround(member.controller.rate / options.telemetry_rate))
-              : 1;
+      const int every = TelemetryEvery(options, member.controller.rate);
       csv.push_back(
           std::make_unique<CsvOutputs>(own, every, TelemetryExtrasFor(member), options.telemetry));
       parts.observers.push_back({csv.back().get()});
@@ -180,9 +177,7 @@ void WriteReport(const std::string& folder, const FlightSetup& setup, const FlyO
     names.push_back(setup.vehicles[i].name);
     colours.push_back(SwarmRgba(static_cast<int>(i)));
   }
-  const std::string command = options.command.empty() ? "aerobox fly " + setup.map.source +
-                                                            " --seed " + std::to_string(setup.seed)
-                                                      : options.command;
+  const std::string command = ReportCommand(options, setup);
   try {
     ReportOutputs::WriteSwarm(folder, setup, reports, names, colours, summary, command);
   } catch (const InputError& e) {

@@ -101,6 +101,112 @@ void AddFlightNumbers(const FlightResult& flight, JsonObject* summary) {
       .Add("control_rate_hz", flight.control_rate);
 }
 
+namespace {
+
+// Where the run started and ended, how the path was planned, and what blocks a given path.
+void AddPlan(const PlanOutcome& plan, JsonObject* summary) {
+  AddPoint(summary, "start_requested", plan.start.requested);
+  AddPoint(summary, "start", plan.start.used);
+  AddPoint(summary, "goal_requested", plan.goal.requested);
+  AddPoint(summary, "goal", plan.goal.used);
+  summary->Add("planning_time_s", plan.result.stats.planning_time)
+      .Add("planner_iterations", static_cast<long long>(plan.result.stats.iterations))
+      .Add("planning_time_capped", plan.result.stats.time_capped);
+  if (plan.result.status == PlanStatus::kPathBlocked) {
+    // where a given path is blocked, and by what (a sweep or a script reads it)
+    const PlanStats& stats = plan.result.stats;
+    summary->Add("blocked_leg", stats.blocked_leg)
+        .Add("blocked_point",
+             std::vector<double>(stats.blocked_point.data(), stats.blocked_point.data() + 3))
+        .Add("blocked_by", plan.blocked_by)
+        .Add("blocked", DescribeBlockedPath(plan));
+  }
+}
+
+// The trajectory along the path: its length, duration, limits and how it was solved.
+void AddTrajectory(const FlightSetup& setup, const TrajectoryResult& trajectory,
+                   const PlanOutcome& plan, JsonObject* summary) {
+  summary->Add("path_length_m", PathLength(plan.result.path))
+      .Add("trajectory_time_s", trajectory.stats.solve_time)
+      .Add("trajectory_duration_s", trajectory.stats.duration)
+      .Add("trajectory_max_speed_mps", trajectory.stats.max_speed)
+      .Add("trajectory_max_accel_mps2", trajectory.stats.max_accel)
+      .Add("speed_limit_mps", SpeedLimit(setup))
+      .Add("accel_limit_mps2", TrajectoryParamsFor(setup).max_accel)
+      .Add("trajectory_objective", ToString(setup.planning.trajectory.objective))
+      // Ipopt's word, and whether the closed form was flown after Ipopt failed (a sweep counts
+      // these)
+      .Add("trajectory_solver_message", trajectory.stats.solver_message)
+      .Add("trajectory_fallback", trajectory.stats.closed_form_fallback);
+  if (setup.planning.trajectory.objective == TimeObjective::kMinTime) {
+    // the limit the trajectory meets most closely (1: exactly at it)
+    summary->Add("trajectory_binding_limit", trajectory.stats.binding_limit.limit)
+        .Add("trajectory_binding_ratio", trajectory.stats.binding_limit.ratio)
+        .Add("trajectory_binding_time_s", trajectory.stats.binding_limit.t);
+  }
+}
+
+// The flight: its status, its numbers, the estimate, the wind met, a mission's goals.
+void AddFlight(const FlightSetup& setup, const MissionResult& result, const OutputCounts& counts,
+               JsonObject* summary) {
+  const PlanOutcome& plan = result.plan;
+  const FlightResult& flight = result.flight;
+  summary->Add("tracking_warning", TrackingNote(setup, flight));
+  summary->Add("flight_status", ToString(flight.status))
+      .Add("flight_time_s", flight.time)
+      .Add("flight_wall_time_s", result.flight_wall_time);
+  AddFlightNumbers(flight, summary);
+  summary->Add("telemetry_rate_hz", flight.control_rate / counts.telemetry_every)
+      .Add("video_frames", counts.video_frames)
+      .Add("video_fps", counts.video_fps);
+  if (setup.sensors.Enabled()) {
+    summary->Add("estimate_rms_m", flight.estimate_rms_error)
+        .Add("estimate_max_m", flight.estimate_max_error);
+  }
+  if (setup.wind.Enabled()) summary->Add("max_wind_mps", flight.max_wind);
+  if (!plan.via.empty()) {
+    // a mission: every goal, whether and when it was reached
+    std::vector<JsonObject> goals;
+    for (size_t i = 0; i <= plan.via.size(); ++i) {
+      const bool last = i == plan.via.size();
+      const Vec3& p = last ? plan.goal.used : plan.via[i].used;
+      const bool reached =
+          last ? flight.status == FlightStatus::kReachedGoal : i < flight.goal_times.size();
+      JsonObject goal;
+      AddPoint(&goal, "goal", p);
+      goal.Add("reached", reached)
+          .Add("time_s", reached ? (last ? flight.time : flight.goal_times[i]) : -1.0);
+      goals.push_back(goal);
+    }
+    summary->Add("goals", goals).Add("stop_at_goals", setup.stop_at_goals);
+  }
+}
+
+// The world it flew in: what was on; and the versions.
+void AddWorld(const FlightSetup& setup, JsonObject* summary) {
+  JsonObject wind;
+  AddPoint(&wind, "mean_mps", setup.wind.mean);
+  wind.Add("turbulence", setup.wind.turbulence == Turbulence::kDryden ? "dryden" : "none")
+      .Add("intensity_mps", std::vector<double>{setup.wind.intensity.x(), setup.wind.intensity.y(),
+                                                setup.wind.intensity.z()})
+      .Add("gusts", static_cast<int>(setup.wind.gusts.size()));
+  summary->Add("wind", wind);
+  JsonObject aero;
+  aero.Add("body_drag", setup.aero.body_drag).Add("rotor_drag", setup.aero.rotor_drag);
+  summary->Add("aero", aero);
+  JsonObject sensors;
+  sensors.Add("imu", setup.sensors.imu.enabled)
+      .Add("position", !setup.sensors.position.enabled                           ? "none"
+                       : setup.sensors.position.kind == PositionSensorKind::kGps ? "gps"
+                                                                                 : "mocap");
+  summary->Add("sensors", sensors);
+  JsonObject versions;
+  versions.Add("aerobox", AEROBOX_VERSION).Add("mujoco", mj_versionString());
+  summary->Add("versions", versions);
+}
+
+}  // namespace
+
 JsonObject RunSummary(const FlightSetup& setup, const MissionResult& result,
                       const OutputCounts& counts) {
   const PlanOutcome& plan = result.plan;
@@ -114,96 +220,13 @@ JsonObject RunSummary(const FlightSetup& setup, const MissionResult& result,
   if (const std::string measures = setup.ControllerMeasures(); !measures.empty()) {
     summary.Add("controller_measures", measures);
   }
-  AddPoint(&summary, "start_requested", plan.start.requested);
-  AddPoint(&summary, "start", plan.start.used);
-  AddPoint(&summary, "goal_requested", plan.goal.requested);
-  AddPoint(&summary, "goal", plan.goal.used);
-  summary.Add("planning_time_s", plan.result.stats.planning_time)
-      .Add("planner_iterations", static_cast<long long>(plan.result.stats.iterations))
-      .Add("planning_time_capped", plan.result.stats.time_capped);
-  if (plan.result.status == PlanStatus::kPathBlocked) {
-    // where a given path is blocked, and by what (a sweep or a script reads it)
-    const PlanStats& stats = plan.result.stats;
-    summary.Add("blocked_leg", stats.blocked_leg)
-        .Add("blocked_point",
-             std::vector<double>(stats.blocked_point.data(), stats.blocked_point.data() + 3))
-        .Add("blocked_by", plan.blocked_by)
-        .Add("blocked", DescribeBlockedPath(plan));
-  }
+  AddPlan(plan, &summary);
   if (result.status != MissionStatus::kNoPath && plan.trajectory) {
-    const TrajectoryResult& trajectory = *plan.trajectory;
-    summary.Add("path_length_m", PathLength(plan.result.path))
-        .Add("trajectory_time_s", trajectory.stats.solve_time)
-        .Add("trajectory_duration_s", trajectory.stats.duration)
-        .Add("trajectory_max_speed_mps", trajectory.stats.max_speed)
-        .Add("trajectory_max_accel_mps2", trajectory.stats.max_accel)
-        .Add("speed_limit_mps", SpeedLimit(setup))
-        .Add("accel_limit_mps2", TrajectoryParamsFor(setup).max_accel)
-        .Add("trajectory_objective", ToString(setup.planning.trajectory.objective))
-        // Ipopt's word, and whether the closed form was flown after Ipopt failed (a sweep counts
-        // these)
-        .Add("trajectory_solver_message", trajectory.stats.solver_message)
-        .Add("trajectory_fallback", trajectory.stats.closed_form_fallback);
-    if (setup.planning.trajectory.objective == TimeObjective::kMinTime) {
-      // the limit the trajectory meets most closely (1: exactly at it)
-      summary.Add("trajectory_binding_limit", trajectory.stats.binding_limit.limit)
-          .Add("trajectory_binding_ratio", trajectory.stats.binding_limit.ratio)
-          .Add("trajectory_binding_time_s", trajectory.stats.binding_limit.t);
-    }
+    AddTrajectory(setup, *plan.trajectory, plan, &summary);
   }
-  if (result.flown) {
-    const FlightResult& flight = result.flight;
-    summary.Add("tracking_warning", TrackingNote(setup, flight));
-    summary.Add("flight_status", ToString(flight.status))
-        .Add("flight_time_s", flight.time)
-        .Add("flight_wall_time_s", result.flight_wall_time);
-    AddFlightNumbers(flight, &summary);
-    summary.Add("telemetry_rate_hz", flight.control_rate / counts.telemetry_every)
-        .Add("video_frames", counts.video_frames)
-        .Add("video_fps", counts.video_fps);
-    if (setup.sensors.Enabled()) {
-      summary.Add("estimate_rms_m", flight.estimate_rms_error)
-          .Add("estimate_max_m", flight.estimate_max_error);
-    }
-    if (setup.wind.Enabled()) summary.Add("max_wind_mps", flight.max_wind);
-    if (!plan.via.empty()) {
-      // a mission: every goal, whether and when it was reached
-      std::vector<JsonObject> goals;
-      for (size_t i = 0; i <= plan.via.size(); ++i) {
-        const bool last = i == plan.via.size();
-        const Vec3& p = last ? plan.goal.used : plan.via[i].used;
-        const bool reached =
-            last ? flight.status == FlightStatus::kReachedGoal : i < flight.goal_times.size();
-        JsonObject goal;
-        AddPoint(&goal, "goal", p);
-        goal.Add("reached", reached)
-            .Add("time_s", reached ? (last ? flight.time : flight.goal_times[i]) : -1.0);
-        goals.push_back(goal);
-      }
-      summary.Add("goals", goals).Add("stop_at_goals", setup.stop_at_goals);
-    }
-  }
+  if (result.flown) AddFlight(setup, result, counts, &summary);
   if (setup.HasUnknown()) AddDiscovery(setup, result, &summary);
-  // the world it flew in: what was on
-  JsonObject wind;
-  AddPoint(&wind, "mean_mps", setup.wind.mean);
-  wind.Add("turbulence", setup.wind.turbulence == Turbulence::kDryden ? "dryden" : "none")
-      .Add("intensity_mps", std::vector<double>{setup.wind.intensity.x(), setup.wind.intensity.y(),
-                                                setup.wind.intensity.z()})
-      .Add("gusts", static_cast<int>(setup.wind.gusts.size()));
-  summary.Add("wind", wind);
-  JsonObject aero;
-  aero.Add("body_drag", setup.aero.body_drag).Add("rotor_drag", setup.aero.rotor_drag);
-  summary.Add("aero", aero);
-  JsonObject sensors;
-  sensors.Add("imu", setup.sensors.imu.enabled)
-      .Add("position", !setup.sensors.position.enabled                           ? "none"
-                       : setup.sensors.position.kind == PositionSensorKind::kGps ? "gps"
-                                                                                 : "mocap");
-  summary.Add("sensors", sensors);
-  JsonObject versions;
-  versions.Add("aerobox", AEROBOX_VERSION).Add("mujoco", mj_versionString());
-  summary.Add("versions", versions);
+  AddWorld(setup, &summary);
   return summary;
 }
 
