@@ -15,7 +15,7 @@
 #include "control/inner_loops.h"
 #include "envs/env_batch.h"
 #include "envs/env_task.h"
-#include "sim/rigid_body.h"
+#include "sim/rigid_batch.h"
 #include "sim/simulation.h"
 
 namespace aerobox {
@@ -59,9 +59,10 @@ double Rate(const EnvParams& params, int n, int threads, const BenchSize& size) 
 }
 
 // [s] of the parts alone, in the same threads over `n` worlds: per world and physics step the
-// rigid body's step (from hover, rotor commands varying about hover) and the inner loops (rates
-// from hover); per world and environment step the action's command, the task's observation and
-// reward, and a reset.
+// rigid bodies' step (from hover, rotor commands varying about hover; each thread's block of
+// worlds in one call, as the environments step them) and the inner loops (rates from hover); per
+// world and environment step the action's command, the task's observation and reward, and a
+// reset.
 struct Parts {
   double dynamics = 0.0, inner = 0.0;  // per physics step
   double command = 0.0, task = 0.0;    // per environment step
@@ -110,23 +111,23 @@ Parts TimeParts(const EnvParams& params, int n, int threads, long physics_steps)
   const RigidModel model = RigidModel::Of(Simulation::FromXml(EnvSceneXml(params, map), "env"));
   const QuadParams vehicle = params.Vehicle();
   const double hover = vehicle.HoverThrustPerRotor();
-  std::vector<std::unique_ptr<RigidBody>> bodies;
+  RigidBatch bodies(model, n);
   std::vector<std::unique_ptr<InnerLoops>> loops;
+  State start;
+  start.p_W = params.target;
   for (int i = 0; i < n; ++i) {
-    bodies.push_back(std::make_unique<RigidBody>(model));
-    State s;
-    s.p_W = params.target;
-    bodies.back()->SetVehicleState(s);
+    bodies.SetVehicleState(i, start);
     loops.push_back(std::make_unique<InnerLoops>(InnerLoopParams(), vehicle));
   }
   WorkerPool pool(std::min(threads, n));
   Parts parts;
   auto begin = Clock::now();
   pool.For(n, [&](int from, int to) {
-    for (int i = from; i < to; ++i) {
-      for (long k = 0; k < physics_steps; ++k) {
-        bodies[static_cast<size_t>(i)]->Step(Vec4::Constant(hover * (1.0 + 0.01 * (k % 7))));
+    for (long k = 0; k < physics_steps; ++k) {
+      for (int i = from; i < to; ++i) {
+        bodies.SetCommands(i, Vec4::Constant(hover * (1.0 + 0.01 * (k % 7))));
       }
+      bodies.Step(from, to);
     }
   });
   parts.dynamics = Seconds(begin) / (static_cast<double>(n) * physics_steps);
@@ -139,8 +140,7 @@ Parts TimeParts(const EnvParams& params, int n, int threads, long physics_steps)
     for (int i = from; i < to; ++i) {
       for (long k = 0; k < physics_steps; ++k) {
         command.rate_B = Vec3(0.01 * (k % 5), 0.0, 0.0);
-        loops[static_cast<size_t>(i)]->Run(command, bodies[static_cast<size_t>(i)]->VehicleState(),
-                                           1e-3, &out);
+        loops[static_cast<size_t>(i)]->Run(command, bodies.VehicleState(i), 1e-3, &out);
       }
     }
   });
@@ -165,7 +165,10 @@ void WhereTimeGoes(const EnvParams& rigid, int n, int threads, const BenchSize& 
   out << "\nWhere the rigid backend's time goes at " << n << " worlds and 1 ms (each part timed "
       << "alone in the same threads, from hover; per environment step of one world " << std::fixed
       << std::setprecision(2) << per_env_step * 1e6 << " us of a thread): " << std::setprecision(0)
-      << "the dynamics " << dynamics << " %, the inner loops (rates, "
+      << "the dynamics " << dynamics << " % (" << std::setprecision(1)
+      << parts.dynamics * used * 1e9 << " ns of a thread per world and physics step, each "
+      << "thread's block of worlds stepped together), " << std::setprecision(0)
+      << "the inner loops (rates, "
       << "mixer) " << inner << " %, the action's command " << command << " %, the task's "
       << "observation and reward " << task << " %, resets (one per " << episode_steps << " steps) "
       << reset << " %, the rest (the shared observation, the loop, drag and wind "

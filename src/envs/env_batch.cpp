@@ -37,12 +37,12 @@ EnvBatch::EnvBatch(const EnvParams& params, int worlds, int threads)
     throw std::invalid_argument("EnvBatch: at least one world, got " + std::to_string(worlds));
   observation_size_ = params_.ObservationSize();
   term_count_ = static_cast<int>(params_.RewardTermNames().size());
-  std::optional<RigidModel> rigid;
-  if (params_.backend == "rigid") rigid = RigidModel::Of(scene_);
+  if (params_.backend == "rigid")
+    rigid_ = std::make_unique<RigidBatch>(RigidModel::Of(scene_), worlds);
   for (int i = 0; i < worlds; ++i) {
     std::unique_ptr<VehiclePhysics> physics;
-    if (rigid) {
-      physics = std::make_unique<RigidBody>(*rigid);
+    if (rigid_) {
+      physics = std::make_unique<RigidBody>(rigid_.get(), i);
     } else {
       physics = std::make_unique<Simulation>(scene_.Clone());
     }
@@ -103,6 +103,7 @@ void EnvBatch::Step(const double* actions, float* observations, double* rewards,
     }
   }
   pool_.For(size(), [&](int begin, int end) {
+    StepBlock(begin, end, actions);
     for (int i = begin; i < end; ++i) {
       EnvWorld& w = *worlds_[static_cast<size_t>(i)];
       float* obs = observations + static_cast<long>(i) * d;
@@ -110,7 +111,7 @@ void EnvBatch::Step(const double* actions, float* observations, double* rewards,
       if (ended_[static_cast<size_t>(i)]) {
         w.Reset(std::nullopt, obs);
       } else {
-        step = w.Step(actions + static_cast<long>(i) * k, obs);
+        step = w.End(actions + static_cast<long>(i) * k, obs);
       }
       ended_[static_cast<size_t>(i)] = step.terminated || step.truncated;
       rewards[i] = step.reward;
@@ -120,6 +121,40 @@ void EnvBatch::Step(const double* actions, float* observations, double* rewards,
       for (int j = 0; j < n_terms; ++j) terms[i * n_terms + j] = step.terms[static_cast<size_t>(j)];
     }
   });
+}
+
+void EnvBatch::StepBlock(int begin, int end, const double* actions) {
+  const int k = params_.ActionSize();
+  for (int i = begin; i < end; ++i) {
+    if (!ended_[static_cast<size_t>(i)]) worlds_[static_cast<size_t>(i)]->Begin(actions + i * k);
+  }
+  while (StepPhysics(begin, end)) {
+    for (int i = begin; i < end; ++i) {
+      if (Active(i)) worlds_[static_cast<size_t>(i)]->AfterPhysics();
+    }
+  }
+}
+
+bool EnvBatch::StepPhysics(int begin, int end) {
+  bool any = false;
+  for (int i = begin; i < end; ++i) {
+    if (!Active(i)) continue;
+    any = true;
+    EnvWorld& w = *worlds_[static_cast<size_t>(i)];
+    if (rigid_) {
+      rigid_->SetCommands(i, w.BeforePhysics());
+    } else {
+      w.physics().Step(w.BeforePhysics());
+    }
+  }
+  if (!rigid_) return any;
+  for (int i = begin; i < end;) {  // each run of active neighbours in one call
+    int j = i;
+    while (j < end && Active(j)) ++j;
+    if (j > i) rigid_->Step(i, j);
+    i = j + 1;
+  }
+  return any;
 }
 
 }  // namespace aerobox

@@ -13,6 +13,7 @@
 #include "common/worker_pool.h"
 #include "envs/env_params.h"
 #include "envs/env_world.h"
+#include "sim/rigid_batch.h"
 #include "sim/simulation.h"
 
 namespace aerobox {
@@ -56,9 +57,23 @@ class EnvBatch {
   Map map_;           // the task kind's, which every world flies in
   Simulation scene_;  // MuJoCo's model of it, as loaded: the worlds' template
   int observation_size_, term_count_;
+  std::unique_ptr<RigidBatch> rigid_;  // the rigid backend's bodies, one world each
   std::vector<std::unique_ptr<EnvWorld>> worlds_;
   std::vector<std::uint8_t> ended_;  // the episode ended at the last step: reset at the next
   WorkerPool pool_;
+
+  // One environment step of the worlds [begin, end) (a thread's block): each world's command,
+  // then physics steps until every world's control period is over or it touched something,
+  // each phase a loop over the block; the rigid backend steps the block's bodies together.
+  void StepBlock(int begin, int end, const double* actions);
+  // One physics step of the block's active worlds: each its own MuJoCo, or the rigid bodies in
+  // runs of neighbours. False when no world was active.
+  bool StepPhysics(int begin, int end);
+  // World i's physics steps now: its episode goes on and its control period is not over. Read,
+  // not kept: flags of neighbouring worlds written by two threads would share a cache line.
+  bool Active(int i) const {
+    return !ended_[static_cast<size_t>(i)] && worlds_[static_cast<size_t>(i)]->Stepping();
+  }
 };
 
 // The scene every world of `params` flies in: the task kind's map (an empty room around the

@@ -144,14 +144,35 @@ ControlCommand EnvWorld::CommandOf(const double* a) {
 }
 
 EnvStep EnvWorld::Step(const double* action, float* observation) {
-  const ControlCommand command = CommandOf(action);
-  bool touched = false;
-  State truth = world_->Truth();
-  for (long k = 0; k < steps_per_control_ && !touched; ++k) {
-    world_->Command(command, world_->Seen(truth));
-    truth = world_->Step(truth);
-    touched = physics_->VehicleTouches();
+  Begin(action);
+  while (Stepping()) {
+    physics_->Step(BeforePhysics());
+    AfterPhysics();
   }
+  return End(action, observation);
+}
+
+void EnvWorld::Begin(const double* action) {
+  command_ = CommandOf(action);
+  truth_ = world_->Truth();
+  substep_ = 0;
+  touched_ = false;
+}
+
+const Vec4& EnvWorld::BeforePhysics() {
+  world_->Command(command_, world_->Seen(truth_));
+  world_->BeforePhysics(truth_);
+  return world_->inner().mixer.thrusts;
+}
+
+void EnvWorld::AfterPhysics() {
+  truth_ = world_->AfterPhysics(truth_);
+  touched_ = physics_->VehicleTouches();
+  ++substep_;
+}
+
+EnvStep EnvWorld::End(const double* action, float* observation) {
+  const bool touched = touched_;
   world_->EndControlPeriod();
   t_ += 1.0 / params_.control_rate;
   state_ = world_->Truth();

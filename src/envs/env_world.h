@@ -48,6 +48,15 @@ class EnvWorld {
   // over the control period. Writes the observation after it.
   EnvStep Step(const double* action, float* observation);
 
+  // Step in its parts, for a batch that steps its worlds' physics together (EnvBatch): Begin;
+  // while Stepping(), BeforePhysics, the physics' step with the rotor commands it returns [N],
+  // AfterPhysics; then End. Step is exactly these with the world's own physics.
+  void Begin(const double* action);
+  bool Stepping() const { return substep_ < steps_per_control_ && !touched_; }
+  const Vec4& BeforePhysics();
+  void AfterPhysics();
+  EnvStep End(const double* action, float* observation);
+
   // The command an action asks for (docs/learning.md's scaling); a velocity action runs the
   // velocity loop once.
   ControlCommand CommandOf(const double* action);
@@ -78,6 +87,11 @@ class EnvWorld {
   State state_;  // the truth
   State seen_;   // what the vehicle knows: the truth, or the estimate with sensors on
   std::array<double, 4> last_action_{};
+  // the step under way (Begin to End)
+  ControlCommand command_;
+  State truth_;
+  long substep_ = 0;
+  bool touched_ = false;
 };
 
 }  // namespace aerobox

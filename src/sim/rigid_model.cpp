@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "sim/rigid_body.h"
+#include "sim/rigid_model.h"
 #include "sim/simulation.h"
 #include "vehicle/model_names.h"
 #include "vehicle/quad_params.h"

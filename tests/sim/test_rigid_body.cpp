@@ -131,7 +131,7 @@ TEST_CASE("the first touching step is MuJoCo's, against the floor and random box
     options.vehicle_position = Vec3(0, 0, 1.5);
     Simulation sim = Simulation::FromXml(BuildSceneMjcf(map, vehicle, options), "boxes");
     RigidBody rigid(RigidModel::Of(sim));
-    REQUIRE(rigid.model().boxes.size() == map.boxes.size());
+    REQUIRE(rigid.batch().model().boxes.size() == map.boxes.size());
     // a tumbling vehicle thrown from a free point at a random box (or the floor)
     State s;
     do {
