@@ -61,12 +61,11 @@ double Rate(const EnvParams& params, int n, int threads, const BenchSize& size) 
 // [s] of the parts alone, in the same threads over `n` worlds: per world and physics step the
 // rigid bodies' step (from hover, rotor commands varying about hover; each thread's block of
 // worlds in one call, as the environments step them) and the inner loops (rates from hover); per
-// world and environment step the action's command, the task's observation and reward, and a
-// reset.
+// world and environment step the action's command, the observation and the reward; a reset.
 struct Parts {
-  double dynamics = 0.0, inner = 0.0;  // per physics step
-  double command = 0.0, task = 0.0;    // per environment step
-  double reset = 0.0;                  // per reset
+  double dynamics = 0.0, inner = 0.0;                     // per physics step
+  double command = 0.0, observation = 0.0, reward = 0.0;  // per environment step
+  double reset = 0.0;                                     // per reset
 };
 
 // [s] per call of `fn(world)` over `calls` calls for each of `n` worlds, in `pool`'s threads.
@@ -81,31 +80,35 @@ double PerCall(WorkerPool& pool, int n, long calls, Fn fn) {
   return Seconds(begin) / (static_cast<double>(n) * calls);
 }
 
-// The environment's own parts: the command, the task's observation and reward, a reset.
+// The environment's own parts: the command, the observation (the world's and the task's), the
+// reward, a reset.
 void TimeEnvironmentParts(const EnvParams& params, int n, int threads, long calls, Parts* parts) {
   EnvBatch batch(params, n, threads);
-  const Map& map = batch.map();
-  std::vector<std::unique_ptr<EnvTask>> tasks;
+  const size_t d = static_cast<size_t>(batch.observation_size());
+  std::vector<float> obs(n * d);
+  std::vector<std::optional<std::uint64_t>> seeds;
+  for (int i = 0; i < n; ++i) seeds.emplace_back(i);
+  batch.Reset(seeds, obs.data());
+  std::vector<std::unique_ptr<EnvTask>> tasks;  // to score, as each world's own task would
   for (int i = 0; i < n; ++i) {
-    tasks.push_back(FindEnvTask(params.task).make(params, params.Vehicle(), map));
+    tasks.push_back(FindEnvTask(params.task).make(params, params.Vehicle(), batch.map()));
     EnvRandom random;
     random.Seed(static_cast<std::uint64_t>(i));
     tasks.back()->Begin(random, EnvOptions());
   }
-  const size_t d = static_cast<size_t>(batch.observation_size());
-  std::vector<float> obs(n * d);
   const double action[4] = {0.1, 0.0, 0.0, 0.0};
   WorkerPool pool(std::min(threads, n));
   parts->command = PerCall(pool, n, calls, [&](int i, long) { batch.world(i).CommandOf(action); });
-  parts->task = PerCall(pool, n, calls, [&](int i, long k) {
-    const State s = batch.world(i).state();
-    tasks[static_cast<size_t>(i)]->Observe(0.01 * k, s, obs.data() + i * d);
-    tasks[static_cast<size_t>(i)]->Score(0.01 * k, s, action);
+  parts->observation =
+      PerCall(pool, n, calls, [&](int i, long) { batch.world(i).Observe(obs.data() + i * d); });
+  parts->reward = PerCall(pool, n, calls, [&](int i, long k) {
+    tasks[static_cast<size_t>(i)]->Score(0.01 * k, batch.world(i).state(), action);
   });
   parts->reset = PerCall(pool, n, std::max(1L, calls / 100), [&](int i, long) {
     batch.world(i).Reset(std::nullopt, obs.data() + i * d);
   });
 }
+
 Parts TimeParts(const EnvParams& params, int n, int threads, long physics_steps) {
   const Map map = FindEnvTask(params.task).map(params);
   const RigidModel model = RigidModel::Of(Simulation::FromXml(EnvSceneXml(params, map), "env"));
@@ -160,19 +163,19 @@ void WhereTimeGoes(const EnvParams& rigid, int n, int threads, const BenchSize& 
   const double episode_steps = rigid.episode_time * rigid.control_rate;
   const auto share = [&](double seconds) { return 100.0 * seconds * used / per_env_step; };
   const double dynamics = share(parts.dynamics * physics), inner = share(parts.inner * physics),
-               command = share(parts.command), task = share(parts.task),
-               reset = share(parts.reset / episode_steps);
+               command = share(parts.command), observation = share(parts.observation),
+               reward = share(parts.reward), reset = share(parts.reset / episode_steps);
   out << "\nWhere the rigid backend's time goes at " << n << " worlds and 1 ms (each part timed "
       << "alone in the same threads, from hover; per environment step of one world " << std::fixed
       << std::setprecision(2) << per_env_step * 1e6 << " us of a thread): " << std::setprecision(0)
       << "the dynamics " << dynamics << " % (" << std::setprecision(1)
       << parts.dynamics * used * 1e9 << " ns of a thread per world and physics step, each "
       << "thread's block of worlds stepped together), " << std::setprecision(0)
-      << "the inner loops (rates, "
-      << "mixer) " << inner << " %, the action's command " << command << " %, the task's "
-      << "observation and reward " << task << " %, resets (one per " << episode_steps << " steps) "
-      << reset << " %, the rest (the shared observation, the loop, drag and wind "
-      << "when on, threads) " << 100 - dynamics - inner - command - task - reset << " %.\n"
+      << "the inner loops (rates, mixer) " << inner << " %, the action's command " << command
+      << " %, the observation " << observation << " %, the reward " << reward << " %, resets "
+      << "(one per " << episode_steps << " steps) " << reset << " %, the rest (the sensors' and "
+      << "the air's calls, the loop over the physics steps, threads) "
+      << 100 - dynamics - inner - command - observation - reward - reset << " %.\n"
       << std::defaultfloat << std::flush;
   // the forces of the air: drag, and a mean wind with Dryden turbulence, against still air
   EnvParams windy = rigid;

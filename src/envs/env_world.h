@@ -66,9 +66,10 @@ class EnvWorld {
   const EnvTask& task() const { return *task_; }
   const VehicleWorld& vehicle_world() const { return *world_; }  // after a reset
   VehiclePhysics& physics() { return *physics_; }
+  // The observation now (ObservationSize floats): what Reset and Step write.
+  void Observe(float* observation) const;
 
  private:
-  void Observe(float* observation) const;
   // Draws the episode's vehicle, wind and sensor noise (domain randomisation) from `seed`.
   void Vary(std::uint64_t seed);
 

@@ -85,6 +85,24 @@ TEST_CASE("one step and one control period of the rigid body are MuJoCo's") {
   }
 }
 
+TEST_CASE("a turn of more than half a right angle in one step is MuJoCo's too") {
+  // the half angle's sine and cosine come from a series up to pi/4, from the library beyond
+  const QuadParams vehicle = *BuiltinVehicle("crazyflie");
+  Simulation sim = Simulation::FromXml(VehicleModelMjcf(vehicle), "crazyflie");
+  RigidBody rigid(RigidModel::Of(sim));
+  Draw d{std::mt19937_64(13)};
+  for (const double half_angle : {0.1, 0.7, 0.9, 2.0}) {
+    CAPTURE(half_angle);
+    State s = d.Any(Vec3(0, 0, 1));
+    s.w_B = d.V(1.0).normalized() * (2.0 * half_angle / sim.timestep());
+    Place(s, Vec4::Zero(), Vec3::Zero(), Vec3::Zero(), &sim);
+    Place(s, Vec4::Zero(), Vec3::Zero(), Vec3::Zero(), &rigid);
+    sim.Step(Vec4::Zero());
+    rigid.Step(Vec4::Zero());
+    CHECK(AngleBetween(sim.VehicleState().q_WB, rigid.VehicleState().q_WB) < 1e-12);
+  }
+}
+
 TEST_CASE("a scaled vehicle (domain randomisation) is scaled alike") {
   const QuadParams vehicle = *BuiltinVehicle("crazyflie");
   Simulation sim = Simulation::FromXml(VehicleModelMjcf(vehicle), "crazyflie");
