@@ -1,12 +1,13 @@
 // RigidModel::Of: what the rigid body needs, read from MuJoCo's compiled model of a scene, and
 // every assumption the rigid body makes about it checked.
+#include "sim/rigid_model.h"
+
 #include <mujoco/mujoco.h>
 
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-#include "sim/rigid_model.h"
 #include "sim/simulation.h"
 #include "vehicle/model_names.h"
 #include "vehicle/quad_params.h"
