@@ -172,7 +172,6 @@ void EnvWorld::AfterPhysics() {
 }
 
 EnvStep EnvWorld::End(const double* action, float* observation) {
-  const bool touched = touched_;
   world_->EndControlPeriod();
   t_ += 1.0 / params_.control_rate;
   state_ = world_->Truth();
@@ -180,7 +179,7 @@ EnvStep EnvWorld::End(const double* action, float* observation) {
   const bool finite = state_.AllFinite() && seen_.AllFinite();
   TaskScore score = task_->Score(t_, state_, action);
   EnvStep out;
-  out.terminated = touched || !finite || score.ended || !physics_->TakeNewWarnings().empty();
+  out.terminated = touched_ || !finite || score.ended || !physics_->TakeNewWarnings().empty();
   out.truncated = !out.terminated && t_ >= params_.episode_time - 1e-9;
   out.terms = std::move(score.terms);
   for (double& term : out.terms) {
